@@ -1,0 +1,40 @@
+"""Shared fixtures: derivations are expensive (sympy), so each spec is derived once per session."""
+
+from __future__ import annotations
+
+import os
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+import pytest
+from hypothesis import HealthCheck, settings
+
+ROOT = Path(__file__).resolve().parent.parent
+SPECS = ROOT / "specs"
+SEED = Path(os.environ.get("TUTGEN_SEED_DIR", ROOT.parent / "shared" / "seed"))
+
+settings.register_profile("default", max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("long", max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
+
+
+def all_specs() -> list[Path]:
+    return sorted(SPECS.rglob("*.yaml"))
+
+
+@cache
+def solved(path: str) -> tuple[Any, Any, dict[str, Any]]:
+    """(system, derivation, json document) for a spec path, derived once per session."""
+    from tutgen.engine.lagrange import derive
+    from tutgen.render.jsonout import derivation_to_json
+    from tutgen.spec.validate import load_system
+
+    system = load_system(path)
+    derivation = derive(system)
+    return system, derivation, derivation_to_json(derivation)
+
+
+@pytest.fixture
+def solve_spec():
+    return lambda path: solved(str(path))

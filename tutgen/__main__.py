@@ -1,0 +1,5 @@
+"""`python -m tutgen`."""
+
+from tutgen.cli.main import run
+
+run()

@@ -1,0 +1,57 @@
+"""The `tutgen` command: one Typer app, one module per command.
+
+Only this package prints to the terminal or sets exit codes. Heavy modules (sympy, pydantic,
+jinja2) are imported inside the commands, so `tutgen --help` stays fast.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import typer
+
+from tutgen import __version__
+from tutgen.cli import schema_cmd, solve
+from tutgen.cli.errors import set_debug
+
+app = typer.Typer(
+    name="tutgen",
+    help="Worked solutions for rigid-body and robot dynamics problems, from a short YAML spec.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_show_locals=False,
+    pretty_exceptions_enable=False,
+    rich_markup_mode=None,
+)
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"tutgen {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def main(
+    version: bool = typer.Option(False, "--version", callback=_version, is_eager=True, help="Print the version."),
+    debug: bool = typer.Option(False, "--debug", help="Show the Python traceback of internal errors."),
+) -> None:
+    """Worked solutions for rigid-body and robot dynamics problems, from a short YAML spec.
+
+    Exit codes: 0 ok, 1 answers wrong (check), 2 usage error, 3 invalid spec,
+    4 valid spec that tutgen cannot derive, 70 internal error.
+    """
+    set_debug(debug)
+
+
+app.command(name="solve")(solve.solve)
+app.command(name="schema")(schema_cmd.schema)
+
+
+def run() -> None:
+    """Console-script entry point."""
+    app(prog_name="tutgen")
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(run())

@@ -1,0 +1,49 @@
+"""`tutgen solve`: specs in, worked solutions out."""
+
+from __future__ import annotations
+
+from enum import StrEnum
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from tutgen.cli.errors import handle_errors, stdout_write
+
+
+class Format(StrEnum):
+    md = "md"
+    json = "json"
+
+
+@handle_errors
+def solve(
+    specs: Annotated[list[Path], typer.Argument(help="One or more spec files (YAML).", show_default=False)],
+    format: Annotated[Format, typer.Option("--format", "-f", help="Output format.")] = Format.md,
+    output: Annotated[
+        Path | None,
+        typer.Option(
+            "--output",
+            "-o",
+            help="Output file (one spec) or directory (several specs, or an existing directory); default stdout.",
+        ),
+    ] = None,
+    force: Annotated[bool, typer.Option("--force", help="Overwrite existing output files.")] = False,
+) -> None:
+    """Derive the worked solution of each SPEC and write it as Markdown or JSON.
+
+    All specs are read and derived first; nothing is written unless every one succeeds.
+    Existing files are overwritten only with --force, and never a spec itself.
+    """
+    from tutgen.api import plan_outputs, solve_specs, write_outputs
+
+    texts = solve_specs(specs, format.value)
+    if output is None:
+        if len(texts) > 1:
+            from tutgen.errors import UsageError
+
+            raise UsageError("several specs need an output directory: add -o DIR")
+        stdout_write(texts[0])
+        return
+    targets = plan_outputs(specs, output, format.value, force=force)
+    write_outputs(targets, texts)

@@ -1,0 +1,87 @@
+"""The engine's output: a frozen :class:`Derivation` that carries every intermediate result.
+
+Renderers and the answer checker read these values; they never derive anything again.
+Expressions here are symbolic (parameters as symbols); :meth:`Derivation.numeric` substitutes
+the parameters that have values.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from tutgen.engine.inertia import BodyInertia, Principal
+from tutgen.engine.kinematics import BodyKinematics
+from tutgen.model.system import System
+
+
+@dataclass(frozen=True)
+class LagrangeTerms:
+    """The three terms of Lagrange's equation for one coordinate q_i:
+    d/dt(dL/dq_i_dot) - dL/dq_i = Q_i."""
+
+    coordinate: str
+    dL_dqd: sp.Expr
+    ddt_dL_dqd: sp.Expr
+    dL_dq: sp.Expr
+    generalized_force: sp.Expr
+
+
+@dataclass(frozen=True)
+class BodyEnergy:
+    """One body's kinetic energy (translation + rotation) and potential energy of gravity."""
+
+    name: str
+    speed_squared: sp.Expr  # |v_G|^2
+    translational: sp.Expr  # m |v_G|^2 / 2
+    rotational: sp.Expr  # omega . J_G omega / 2
+    kinetic: sp.Expr
+    gravitational: sp.Expr
+
+
+@dataclass(frozen=True)
+class Check:
+    """A property the engine verified on its own result."""
+
+    name: str
+    passed: bool
+    detail: str
+
+
+@dataclass(frozen=True)
+class Derivation:
+    """Everything tutgen derived for one spec, in teaching order."""
+
+    system: System
+    inertia: tuple[BodyInertia, ...] = ()
+    principal: tuple[Principal | None, ...] = ()  # per body, of the inertia about the body frame's origin
+    kinematics: tuple[BodyKinematics, ...] = ()
+    energies: tuple[BodyEnergy, ...] = ()
+    spring_energies: tuple[tuple[str, sp.Expr], ...] = ()
+    kinetic_energy: sp.Expr | None = None
+    potential_energy: sp.Expr | None = None
+    lagrangian: sp.Expr | None = None
+    lagrange_terms: tuple[LagrangeTerms, ...] = ()
+    generalized_forces: sp.ImmutableMatrix | None = None
+    mass_matrix: sp.ImmutableMatrix | None = None
+    coriolis_vector: sp.ImmutableMatrix | None = None
+    coriolis_matrix: sp.ImmutableMatrix | None = None
+    gravity_vector: sp.ImmutableMatrix | None = None
+    equations_of_motion: sp.ImmutableMatrix | None = None  # (H q_ddot + C + G - Q)_i, each = 0
+    christoffel: dict[tuple[int, int, int], sp.Expr] = field(default_factory=dict)  # tutorial's h_ijk, 0-based
+    christoffel_first_kind: dict[tuple[int, int, int], sp.Expr] = field(default_factory=dict)
+    mass_matrix_determinant: sp.Expr | None = None
+    remarks: tuple[str, ...] = ()
+    checks: tuple[Check, ...] = ()
+
+    @property
+    def values(self) -> dict[sp.Symbol, sp.Expr]:
+        return self.system.values
+
+    def numeric(self, expr: sp.Expr) -> sp.Expr:
+        """Substitute the parameters that have numeric values (exact)."""
+        values = self.values
+        if not values or not hasattr(expr, "subs"):
+            return expr
+        return expr.subs(values)

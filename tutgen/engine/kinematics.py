@@ -1,0 +1,212 @@
+"""Where every body is, and how fast it moves: positions, rotations and velocity Jacobians.
+
+Velocities are linear in the coordinate rates, v = J_v(q) q_dot and omega = J_w(q) q_dot, so each
+body carries its two Jacobians (3 x n, world components). Kinetic energy, generalized forces and
+(later) Newton-Euler all read them, instead of differentiating positions again.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+
+from tutgen.errors import DerivationError
+from tutgen.model.system import GROUND, Body, Coordinate, Joint, JointKind, System
+
+Vec = sp.ImmutableMatrix
+
+
+def rotation_about(axis: sp.MatrixBase, angle: sp.Expr) -> sp.Matrix:
+    """Rodrigues' formula for a unit axis: R = cos(a) E + sin(a) [axis]x + (1 - cos(a)) axis axis^T.
+
+    Examples
+    ========
+    >>> import sympy as sp
+    >>> t = sp.Symbol("t")
+    >>> rotation_about(sp.Matrix([0, 0, 1]), t)
+    Matrix([
+    [cos(t), -sin(t), 0],
+    [sin(t),  cos(t), 0],
+    [     0,       0, 1]])
+    """
+    a = sp.Matrix(axis)
+    c, s = sp.cos(angle), sp.sin(angle)
+    skew = sp.Matrix([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+    r = c * sp.eye(3) + s * skew + (1 - c) * (a * a.T)
+    return r.applyfunc(sp.expand)
+
+
+@dataclass(frozen=True)
+class Frame:
+    """A body frame: origin position, rotation (world from body), and the Jacobians of the origin
+    velocity and of the angular velocity. ``planar`` records (world axis, angle) while the frame has
+    only turned about one fixed axis, so that sums of angles stay sums (cos(t1 + t2))."""
+
+    position: sp.Matrix
+    rotation: sp.Matrix
+    jv: sp.Matrix
+    jw: sp.Matrix
+    planar: tuple[tuple[sp.Expr, ...], sp.Expr] | None
+
+
+@dataclass(frozen=True)
+class BodyKinematics:
+    """A body's placement and velocities, in world components."""
+
+    name: str
+    position: Vec  # the body frame's origin
+    rotation: sp.ImmutableMatrix
+    com: Vec  # the centre of mass
+    jv: sp.ImmutableMatrix  # v_G = jv * q_dot
+    jw: sp.ImmutableMatrix  # omega = jw * q_dot
+    velocity: Vec  # v_G
+    angular_velocity: Vec
+
+
+class Kinematics:
+    """The frames of all bodies of a system (ground included), built once."""
+
+    def __init__(self, system: System, com_of: dict[str, sp.ImmutableMatrix]) -> None:
+        self.system = system
+        self.q = [c.q for c in system.coordinates]
+        self.qd = sp.Matrix([c.qd for c in system.coordinates])
+        n = len(self.q)
+        ground = Frame(sp.zeros(3, 1), sp.eye(3), sp.zeros(3, n), sp.zeros(3, n), ((0, 0, 1), sp.Integer(0)))
+        self.frames: dict[str, Frame] = {GROUND: ground}
+        by_child = {j.child: j for j in system.joints}
+        for body in system.bodies:
+            self._frame(body.name, by_child, ())
+        self.bodies: dict[str, BodyKinematics] = {}
+        for body in system.bodies:
+            f = self.frames[body.name]
+            com = (f.position + f.rotation * sp.Matrix(com_of[body.name])).applyfunc(sp.expand)
+            jv = com.jacobian(self.q) if n else sp.zeros(3, 0)
+            self.bodies[body.name] = BodyKinematics(
+                name=body.name,
+                position=Vec(f.position),
+                rotation=sp.ImmutableMatrix(f.rotation),
+                com=Vec(com),
+                jv=sp.ImmutableMatrix(jv),
+                jw=sp.ImmutableMatrix(f.jw),
+                velocity=Vec((jv * self.qd).applyfunc(_collect_rates(self.qd))),
+                angular_velocity=Vec((f.jw * self.qd).applyfunc(sp.expand)),
+            )
+
+    # -- building frames -----------------------------------------------------------------
+    def _frame(self, name: str, by_child: dict[str, Joint], seen: tuple[str, ...]) -> Frame:
+        if name in self.frames:
+            return self.frames[name]
+        if name in seen:  # validate.py rejects cycles; this guards the recursion anyway
+            raise DerivationError(f"the joints form a loop through '{name}'")
+        joint = by_child.get(name)
+        if joint is None:
+            frame = self._explicit_frame(self.system.body(name))
+        else:
+            parent = self._frame(joint.parent, by_child, (*seen, name))
+            frame = self._joint_frame(parent, joint)
+        self.frames[name] = frame
+        return frame
+
+    def _rate_column(self, coordinate: Coordinate | None) -> sp.Matrix:
+        n = len(self.q)
+        e = sp.zeros(1, n)
+        if coordinate is not None:
+            e[0, self.q.index(coordinate.q)] = 1
+        return e
+
+    def _explicit_frame(self, body: Body) -> Frame:
+        n = len(self.q)
+        pos = sp.Matrix(body.position) if body.position is not None else sp.zeros(3, 1)
+        rot = sp.eye(3)
+        jw = sp.zeros(3, n)
+        planar: tuple[tuple[sp.Expr, ...], sp.Expr] | None = ((0, 0, 1), sp.Integer(0))
+        for axis, angle in body.rotation_rates:
+            world_axis = (rot * sp.Matrix(axis)).applyfunc(sp.expand)
+            if n:
+                jw += world_axis * sp.Matrix([[sp.diff(angle, qi) for qi in self.q]])
+            planar = _merge_planar(planar, world_axis, angle)
+            rot = _rotation_from_planar(planar) if planar else (rot * rotation_about(axis, angle))
+        jv = pos.jacobian(self.q) if n else sp.zeros(3, 0)
+        return Frame(pos, rot, jv, jw, planar)
+
+    def _joint_frame(self, parent: Frame, joint: Joint) -> Frame:
+        base_pos = (parent.position + parent.rotation * sp.Matrix(joint.origin_offset)).applyfunc(sp.expand)
+        fixed = sp.Matrix(joint.rotation)
+        is_identity = fixed == sp.eye(3)
+        base_rot = parent.rotation * fixed if not is_identity else parent.rotation
+        planar = parent.planar if is_identity else None
+        axis_world = (base_rot * sp.Matrix(joint.axis)).applyfunc(sp.expand)
+        value = (joint.coordinate.q if joint.coordinate else sp.Integer(0)) + joint.offset
+        rate = self._rate_column(joint.coordinate)
+        jw = parent.jw
+        pos = base_pos
+        if joint.kind is JointKind.REVOLUTE:
+            if joint.absolute:
+                if any(axis_world.free_symbols & set(self.q)):
+                    raise DerivationError(
+                        f"joint '{joint.name}' measures an absolute angle, but its axis turns with the "
+                        "parent link; absolute angles need an axis fixed in the world (planar arms)",
+                        joint.origin,
+                    )
+                jw = axis_world * rate
+                planar = (tuple(axis_world), value) if is_identity else None
+                rot = rotation_about(axis_world, value) * fixed
+            else:
+                jw = parent.jw + axis_world * rate
+                planar = _merge_planar(planar, axis_world, value)
+                rot = _rotation_from_planar(planar) if planar else base_rot * rotation_about(joint.axis, value)
+        elif joint.kind is JointKind.PRISMATIC:
+            rot = base_rot
+            pos = (base_pos + axis_world * value).applyfunc(sp.expand)
+        else:  # fixed
+            rot = base_rot
+        rot = sp.Matrix(rot).applyfunc(sp.expand)
+        jv = pos.jacobian(self.q) if self.q else sp.zeros(3, 0)
+        return Frame(pos, rot, jv, jw, planar)
+
+    # -- points on bodies ------------------------------------------------------------------
+    def point(self, body: str, local: sp.MatrixBase) -> sp.Matrix:
+        """World position of a point given in a body's frame."""
+        f = self.frames[body]
+        return (f.position + f.rotation * sp.Matrix(local)).applyfunc(sp.expand)
+
+    def point_jacobian(self, body: str, world_point: sp.MatrixBase) -> sp.Matrix:
+        """J such that the velocity of the body's material point now at ``world_point`` is J q_dot:
+        J = J_v(origin) + J_w x (r_P - r_O), column by column."""
+        f = self.frames[body]
+        lever = sp.Matrix(world_point) - f.position
+        n = len(self.q)
+        cols = [f.jv[:, j] + f.jw[:, j].cross(lever) for j in range(n)]
+        return sp.Matrix.hstack(*cols).applyfunc(sp.expand) if n else sp.zeros(3, 0)
+
+
+def _merge_planar(
+    planar: tuple[tuple[sp.Expr, ...], sp.Expr] | None, world_axis: sp.MatrixBase, angle: sp.Expr
+) -> tuple[tuple[sp.Expr, ...], sp.Expr] | None:
+    """Keep (axis, total angle) while every rotation so far is about the same fixed world axis."""
+    if planar is None:
+        return None
+    axis, total = planar
+    w = tuple(sp.Matrix(world_axis))
+    if total == 0 and all(v.is_number for v in w):
+        return (w, angle)
+    if w == axis:
+        return (axis, total + angle)
+    if w == tuple(-v for v in axis):
+        return (axis, total - angle)
+    return None
+
+
+def _rotation_from_planar(planar: tuple[tuple[sp.Expr, ...], sp.Expr]) -> sp.Matrix:
+    axis, angle = planar
+    return rotation_about(sp.Matrix(axis), angle)
+
+
+def _collect_rates(qd: sp.Matrix):  # noqa: ANN202 - a small closure factory
+    rates = list(qd)
+
+    def tidy(e: sp.Expr) -> sp.Expr:
+        return sp.collect(sp.expand(e), rates)
+
+    return tidy

@@ -1,0 +1,281 @@
+"""Lagrange's method, from the bodies to the matrix form H(q) q_ddot + C(q, q_dot) + G(q) = Q.
+
+The order follows a worked solution: mass properties, kinematics, T and U, the Lagrangian, the
+three terms of Lagrange's equation for each coordinate, then H, the Christoffel symbols, C and G.
+H is assembled from the velocity Jacobians (H = sum m J_v^T J_v + J_w^T R J_G R^T J_w), one
+small entry at a time, and C from the Christoffel symbols of H, so no step needs a global simplify.
+The equations of Lagrange's route and the matrix form are then checked against each other.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from tutgen.engine.derivation import BodyEnergy, Check, Derivation, LagrangeTerms
+from tutgen.engine.inertia import BodyInertia, body_inertia, principal_axes
+from tutgen.engine.kinematics import Kinematics
+from tutgen.engine.tidy import is_zero, tidy, tidy_rates
+from tutgen.errors import DerivationError
+from tutgen.model.system import GROUND, Damper, Spring, System
+
+
+def derive(system: System) -> Derivation:
+    """Derive everything a spec asks for, in teaching order.
+
+    Examples
+    ========
+    See ``tests/models.py`` for named example systems (simple pendulum, cart-pole, double pendulum).
+    """
+    inertia = tuple(body_inertia(b) for b in system.bodies)
+    principal = tuple(principal_axes(system_subs(system, bi.inertia_origin)) for bi in inertia)
+    if not system.coordinates:
+        return Derivation(system=system, inertia=inertia, principal=principal)
+
+    q = [c.q for c in system.coordinates]
+    qd = [c.qd for c in system.coordinates]
+    qdd = [c.qdd for c in system.coordinates]
+    n = len(q)
+    remarks: list[str] = []
+
+    kin: Kinematics | None = None
+    energies: list[BodyEnergy] = []
+    if system.kinetic_energy is not None:
+        t_total = sp.expand(system.kinetic_energy)
+        h = sp.Matrix(n, n, lambda i, j: tidy(sp.diff(t_total, qd[i], qd[j])))
+        rest = sp.expand(t_total - (sp.Matrix([qd]) * h * sp.Matrix(qd))[0] / 2)
+        if rest != 0 or any(h_ij.has(*qd) for h_ij in h):
+            raise DerivationError(
+                "the kinetic energy must be a quadratic form in the velocities, T = q_dot^T H(q) q_dot / 2; "
+                f"this one has the extra terms {rest}",
+                system.origin,
+            )
+        u_total = sp.expand(system.potential_energy) if system.potential_energy is not None else sp.Integer(0)
+        bodies_kin = ()
+    else:
+        kin = Kinematics(system, {bi.name: bi.com for bi in inertia})
+        h = sp.zeros(n, n)
+        u_total = sp.Integer(0)
+        qd_vec = sp.Matrix(qd)
+        for bi in inertia:
+            bk = kin.bodies[bi.name]
+            h_trans = (bk.jv.T * bk.jv).applyfunc(lambda e, m=bi.mass: tidy(m * e))
+            h_rot = _rotational_block(bi, bk.rotation, bk.jw)
+            h += h_trans + h_rot
+            v2 = tidy_rates((qd_vec.T * (bk.jv.T * bk.jv).applyfunc(tidy) * qd_vec)[0], qd)
+            t_trans = tidy_rates((qd_vec.T * h_trans * qd_vec)[0] / 2, qd)
+            t_rot = tidy_rates((qd_vec.T * h_rot * qd_vec)[0] / 2, qd)
+            grav = sp.Integer(0)
+            if system.gravity is not None:
+                grav = tidy(-bi.mass * (sp.Matrix(system.gravity).T * sp.Matrix(bk.com))[0])
+            u_total += grav
+            energies.append(BodyEnergy(bi.name, v2, t_trans, t_rot, tidy_rates(t_trans + t_rot, qd), grav))
+        h = h.applyfunc(tidy)
+        t_total = tidy_rates((qd_vec.T * h * qd_vec)[0] / 2, qd)
+        bodies_kin = tuple(kin.bodies[b.name] for b in system.bodies)
+
+    spring_energies = tuple((s.name, _spring_energy(s, kin, system)) for s in system.springs)
+    u_total = tidy(u_total + sum((e for _, e in spring_energies), sp.Integer(0)))
+    lagrangian = t_total - u_total
+
+    forces = _generalized_forces(system, kin, q, qd)
+
+    # Lagrange's equation, term by term: d/dt(dL/dq_dot_i) - dL/dq_i = Q_i
+    terms: list[LagrangeTerms] = []
+    eom_lagrange: list[sp.Expr] = []
+    for i, coord in enumerate(system.coordinates):
+        p_i = tidy_rates(sp.diff(lagrangian, qd[i]), qd)
+        dp_i = tidy_rates(_ddt(p_i, q, qd, qdd), [*qdd, *qd])
+        f_i = tidy_rates(sp.diff(lagrangian, q[i]), qd)
+        terms.append(LagrangeTerms(coord.name, p_i, dp_i, f_i, forces[i]))
+        eom_lagrange.append(dp_i - f_i - forces[i])
+
+    # matrix form
+    hm = sp.ImmutableMatrix(h)
+    first = {
+        (i, j, k): tidy((sp.diff(h[i, j], q[k]) + sp.diff(h[i, k], q[j]) - sp.diff(h[j, k], q[i])) / 2)
+        for i in range(n)
+        for j in range(n)
+        for k in range(n)
+    }
+    tutorial = {
+        (i, j, k): tidy(sp.diff(h[i, j], q[k]) - sp.diff(h[j, k], q[i]) / 2)
+        for i in range(n)
+        for j in range(n)
+        for k in range(n)
+    }
+    c_vec = sp.ImmutableMatrix(
+        [
+            tidy_rates(sum((first[i, j, k] * qd[j] * qd[k] for j in range(n) for k in range(n)), sp.Integer(0)), qd)
+            for i in range(n)
+        ]
+    )
+    c_mat = sp.ImmutableMatrix(
+        n, n, lambda i, j: tidy_rates(sum((first[i, j, k] * qd[k] for k in range(n)), sp.Integer(0)), qd)
+    )
+    g_vec = sp.ImmutableMatrix([tidy(sp.diff(u_total, qi)) for qi in q])
+    q_vec = sp.ImmutableMatrix(forces)
+    eom = sp.ImmutableMatrix(
+        [tidy_rates((hm * sp.Matrix(qdd))[i] + c_vec[i] + g_vec[i] - q_vec[i], [*qdd, *qd]) for i in range(n)]
+    )
+
+    checks = [_agreement(eom, eom_lagrange, system)]
+    h_dot = hm.applyfunc(lambda e: _ddt(e, q, qd, qdd))
+    skew = h_dot - 2 * c_mat
+    ok = all(is_zero(skew[i, j] + skew[j, i])[0] for i in range(n) for j in range(i, n))
+    checks.append(Check("skew_symmetry", ok, "H_dot - 2 C is skew-symmetric" if ok else "H_dot - 2 C is NOT skew"))
+    checks.append(Check("symmetric_mass_matrix", hm == hm.T, "H = H^T"))
+
+    det = tidy(hm.det(method="berkowitz")) if n <= 4 else None
+    remarks += _degeneracy_remarks(system, hm, det, t_total, u_total, forces, eom)
+    if all(first[key] == 0 for key in first):
+        remarks.append("H does not depend on q, so every Christoffel symbol vanishes and C = 0.")
+
+    return Derivation(
+        system=system,
+        inertia=inertia,
+        principal=principal,
+        kinematics=bodies_kin,
+        energies=tuple(energies),
+        spring_energies=spring_energies,
+        kinetic_energy=t_total,
+        potential_energy=u_total,
+        lagrangian=lagrangian,
+        lagrange_terms=tuple(terms),
+        generalized_forces=q_vec,
+        mass_matrix=hm,
+        coriolis_vector=c_vec,
+        coriolis_matrix=c_mat,
+        gravity_vector=g_vec,
+        equations_of_motion=eom,
+        christoffel=tutorial,
+        christoffel_first_kind=first,
+        mass_matrix_determinant=det,
+        remarks=tuple(remarks),
+        checks=tuple(checks),
+    )
+
+
+def system_subs(system: System, m: sp.MatrixBase) -> sp.MatrixBase:
+    values = system.values
+    return m.subs(values) if values else m
+
+
+def _ddt(expr: sp.Expr, q: list[sp.Symbol], qd: list[sp.Symbol], qdd: list[sp.Symbol]) -> sp.Expr:
+    """The total time derivative by the chain rule: d/dt f(q, q_dot) = f_q q_dot + f_qdot q_ddot."""
+    out = sp.Integer(0)
+    for qi, qdi, qddi in zip(q, qd, qdd, strict=True):
+        out += sp.diff(expr, qi) * qdi + sp.diff(expr, qdi) * qddi
+    return out
+
+
+def _rotational_block(bi: BodyInertia, rotation: sp.MatrixBase, jw: sp.MatrixBase) -> sp.Matrix:
+    """J_w^T (R J_G R^T) J_w, computed in body axes: (R^T J_w)^T J_G (R^T J_w)."""
+    n = jw.shape[1]
+    if bi.inertia_com == sp.zeros(3, 3) or n == 0:
+        return sp.zeros(n, n)
+    jw_body = (sp.Matrix(rotation).T * sp.Matrix(jw)).applyfunc(tidy)
+    return (jw_body.T * sp.Matrix(bi.inertia_com) * jw_body).applyfunc(tidy)
+
+
+def _length_between(element: Spring | Damper, kin: Kinematics | None) -> sp.Expr:
+    assert element.between is not None and kin is not None
+    a, b = element.between
+    d = kin.point(a.body, a.at) - kin.point(b.body, b.at)
+    return tidy((d.T * d)[0])  # the squared length
+
+
+def _spring_energy(spring: Spring, kin: Kinematics | None, system: System) -> sp.Expr:
+    """U = k (L - L0)^2 / 2, with L the distance between the ends or the given elongation."""
+    if spring.extension is not None:
+        return spring.stiffness * spring.extension**2 / 2
+    if kin is None:
+        raise DerivationError(f"spring '{spring.name}' needs bodies to attach to", spring.origin)
+    length2 = _length_between(spring, kin)
+    if spring.free_length == 0:
+        return tidy(spring.stiffness * length2 / 2)
+    return spring.stiffness * (sp.sqrt(length2) - spring.free_length) ** 2 / 2
+
+
+def _generalized_forces(
+    system: System, kin: Kinematics | None, q: list[sp.Symbol], qd: list[sp.Symbol]
+) -> list[sp.Expr]:
+    """Q_i from the virtual power of every applied force, torque and damper."""
+    n = len(q)
+    names = [c.name for c in system.coordinates]
+    out = [sp.Integer(0)] * n
+    for name, value in system.generalized_forces:
+        i = names.index(name)
+        out[i] = out[i] + value
+    for load in system.loads:
+        assert kin is not None
+        frame = kin.frames[load.on]
+        rot = frame.rotation if load.in_body_frame else sp.eye(3)
+        if load.force is not None:
+            force = rot * sp.Matrix(load.force)
+            where = kin.point(load.on, load.at)
+            jac = kin.point_jacobian(load.on, where)
+            if load.reaction_on is not None and load.reaction_on != GROUND:
+                jac = jac - kin.point_jacobian(load.reaction_on, where)
+            for i in range(n):
+                out[i] = out[i] + (force.T * jac[:, i])[0]
+        if load.torque is not None:
+            torque = rot * sp.Matrix(load.torque)
+            jw = frame.jw
+            if load.reaction_on is not None and load.reaction_on != GROUND:
+                jw = jw - kin.frames[load.reaction_on].jw
+            for i in range(n):
+                out[i] = out[i] + (torque.T * jw[:, i])[0]
+    for damper in system.dampers:
+        if damper.extension is not None:
+            ext = damper.extension
+            rate = sum((sp.diff(ext, q[j]) * qd[j] for j in range(n)), sp.Integer(0))
+            for i in range(n):
+                out[i] = out[i] - damper.coefficient * rate * sp.diff(ext, q[i])
+        else:
+            length2 = _length_between(damper, kin)
+            # L_dot = (dL^2/dt) / (2 L);  Q_i = -c L_dot dL/dq_i = -c (dL^2/dt)(dL^2/dq_i) / (4 L^2)
+            rate2 = sum((sp.diff(length2, q[j]) * qd[j] for j in range(n)), sp.Integer(0))
+            for i in range(n):
+                out[i] = out[i] - damper.coefficient * rate2 * sp.diff(length2, q[i]) / (4 * length2)
+    return [tidy_rates(e, qd) if not e.has(sp.Pow) or e.is_polynomial(*qd) else sp.factor_terms(e) for e in out]
+
+
+def _agreement(eom: sp.MatrixBase, lagrange: list[sp.Expr], system: System) -> Check:
+    """Lagrange's equations, as derived term by term, must equal H q_ddot + C + G - Q."""
+    for i, coord in enumerate(system.coordinates):
+        zero, _ = is_zero(eom[i] - lagrange[i])
+        if not zero:
+            raise DerivationError(
+                f"internal check failed: the matrix form of the equation for '{coord.name}' differs from "
+                "Lagrange's equation; please report this spec as a tutgen bug",
+                coord.origin,
+            )
+    return Check("matrix_form_equals_lagrange", True, "H q_ddot + C + G - Q equals Lagrange's equations")
+
+
+def _degeneracy_remarks(
+    system: System,
+    h: sp.MatrixBase,
+    det: sp.Expr | None,
+    t: sp.Expr,
+    u: sp.Expr,
+    forces: list[sp.Expr],
+    eom: sp.MatrixBase,
+) -> list[str]:
+    out: list[str] = []
+    n = h.shape[0]
+    for i, coord in enumerate(system.coordinates):
+        if all(h[i, j] == 0 for j in range(n)):
+            out.append(
+                f"The coordinate '{coord.name}' carries no inertia (row {i + 1} of H is zero): its equation is "
+                f"not a differential equation but the condition {sp.sstr(eom[i])} = 0."
+            )
+        involved = any(e.has(coord.q) or e.has(coord.qd) for e in (t, u, *forces))
+        if not involved:
+            out.append(f"The coordinate '{coord.name}' appears nowhere in T, U or the generalized forces.")
+    if det is not None and det == 0:
+        out.append(
+            "det H = 0: the mass matrix is singular, so q_ddot = H^-1 (Q - C - G) does not exist; "
+            "the equations cannot be solved for every acceleration."
+        )
+    return out

@@ -1,0 +1,95 @@
+"""Putting expressions in the form a person writes, and deciding whether an expression is zero.
+
+No global ``simplify``: every function here works on one small expression at a time (one entry of
+H, one term of T), so cost stays proportional to the size of the result.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Iterable, Sequence
+
+import sympy as sp
+
+
+def tidy(expr: sp.Expr) -> sp.Expr:
+    """Expand, combine trigonometric products (cos a cos b - sin a sin b = cos(a + b),
+    sin^2 + cos^2 = 1), and pull common factors out of sums.
+
+    Examples
+    ========
+    >>> import sympy as sp
+    >>> a, t = sp.symbols("a t")
+    >>> tidy(a*sp.sin(t)**2 + a*sp.cos(t)**2)
+    a
+    """
+    e = sp.expand(expr)
+    if e.is_number or not e.has(sp.sin, sp.cos, sp.tan):
+        return e
+    s = sp.trigsimp(e)
+    return sp.expand(s) if sp.count_ops(sp.expand(s)) <= sp.count_ops(s) else s
+
+
+def tidy_rates(expr: sp.Expr, rates: Sequence[sp.Symbol]) -> sp.Expr:
+    """Group a polynomial in the rates (q_dot or q_ddot) by monomial, each coefficient tidied."""
+    e = sp.expand(expr)
+    if not rates:
+        return tidy(e)
+    poly = sp.Poly(e, *rates)
+    terms = []
+    for monom, coeff in sorted(poly.terms(), key=lambda t: t[0], reverse=True):
+        mono = sp.Mul(*[r**k for r, k in zip(rates, monom, strict=True)])
+        terms.append(tidy(coeff) * mono)
+    return sp.Add(*terms)
+
+
+def trig_reduce(expr: sp.Expr) -> sp.Expr:
+    """A canonical form for polynomials in sines and cosines: expand every sum of angles, then
+    replace sin(u)^2 by 1 - cos(u)^2 until no even power of a sine is left. Two such polynomials
+    are equal exactly when their reduced forms are equal."""
+    out = sp.expand(sp.expand_trig(expr))
+
+    def is_sin_square(t: sp.Basic) -> bool:
+        return bool(t.is_Pow and isinstance(t.base, sp.sin) and t.exp.is_Integer and t.exp >= 2)
+
+    def lower(t: sp.Pow) -> sp.Expr:
+        u = t.base.args[0]
+        return (1 - sp.cos(u) ** 2) * sp.sin(u) ** (t.exp - 2)
+
+    while out.has(sp.sin) and any(is_sin_square(t) for t in sp.preorder_traversal(out)):
+        out = sp.expand(out.replace(is_sin_square, lower))
+    return out
+
+
+def numerically_zero(expr: sp.Expr, trials: int = 8, seed: int = 4245) -> bool:
+    """True when the expression vanishes (to 1e-9, relatively) at random points in (0.3, 2.7).
+
+    Deterministic: a fixed seed, evaluated with sympy's own arbitrary-precision evaluation.
+    """
+    free = sorted(expr.free_symbols, key=lambda s: s.name)
+    rng = random.Random(seed)
+    for _ in range(trials):
+        point = {s: sp.Rational(rng.randint(300, 2700), 1000) for s in free}
+        value = sp.N(expr.subs(point), 30)
+        if not value.is_number:
+            return False
+        scale = max(1.0, max((abs(float(sp.N(a.subs(point), 15))) for a in sp.Add.make_args(expr)), default=1.0))
+        if abs(complex(value)) > 1e-9 * scale:
+            return False
+    return True
+
+
+def is_zero(expr: sp.Expr) -> tuple[bool, str]:
+    """Decide expr == 0: symbolically when possible, else numerically. Returns (zero, how)."""
+    e = sp.expand(expr)
+    if e == 0:
+        return True, "expanded"
+    if trig_reduce(e) == 0:
+        return True, "trigonometric reduction"
+    if numerically_zero(e):
+        return True, "numerically, at 8 random states"
+    return False, "differs"
+
+
+def sort_symbols(symbols: Iterable[sp.Symbol]) -> list[sp.Symbol]:
+    return sorted(symbols, key=sp.default_sort_key)

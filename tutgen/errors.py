@@ -1,0 +1,90 @@
+"""Every error tutgen reports to a user, with where it comes from.
+
+The CLI boundary (``tutgen.cli``) is the only place that catches these: it prints ``str(err)``
+to stderr and exits with ``err.exit_code``. Anything else that escapes is a bug.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+#: Documented exit codes (README, "Exit codes"). They are a public contract.
+EXIT_OK = 0
+EXIT_CHECK_FAILED = 1
+EXIT_USAGE = 2
+EXIT_INVALID_SPEC = 3
+EXIT_CANNOT_DERIVE = 4
+EXIT_INTERNAL = 70
+
+
+@dataclass(frozen=True, order=True)
+class Location:
+    """A 1-based position in a file (``col`` 0 means "the whole line", line 0 "the whole file")."""
+
+    path: str
+    line: int = 0
+    col: int = 0
+
+    def __str__(self) -> str:
+        if self.line <= 0:
+            return self.path
+        if self.col <= 0:
+            return f"{self.path}:{self.line}"
+        return f"{self.path}:{self.line}:{self.col}"
+
+
+class TutgenError(Exception):
+    """Base class of every error meant for the user."""
+
+    exit_code: int = EXIT_INTERNAL
+
+
+@dataclass(frozen=True)
+class SpecError(TutgenError, ValueError):
+    """One problem in a spec, at one place: what was expected and what was found."""
+
+    location: Location
+    message: str
+    hint: str | None = None
+    exit_code: int = field(default=EXIT_INVALID_SPEC, compare=False)
+
+    def __str__(self) -> str:
+        text = f"{self.location}: error: {self.message}"
+        if self.hint:
+            text += f"\n  hint: {self.hint}"
+        return text
+
+
+class SpecErrors(TutgenError, ValueError):
+    """Every problem found in one or more specs, sorted by position; raised once."""
+
+    exit_code = EXIT_INVALID_SPEC
+
+    def __init__(self, errors: list[SpecError]) -> None:
+        unique = sorted(set(errors), key=lambda e: (e.location, e.message))
+        self.errors: list[SpecError] = unique
+        super().__init__("\n".join(str(e) for e in unique))
+
+    def __str__(self) -> str:
+        return "\n".join(str(e) for e in self.errors)
+
+
+class DerivationError(TutgenError):
+    """A valid spec that tutgen cannot derive (or a derivation that failed its own checks)."""
+
+    exit_code = EXIT_CANNOT_DERIVE
+
+    def __init__(self, message: str, location: Location | None = None) -> None:
+        self.location = location
+        self.message = message
+        super().__init__(message)
+
+    def __str__(self) -> str:
+        where = f"{self.location}: " if self.location else ""
+        return f"{where}error: {self.message}"
+
+
+class UsageError(TutgenError):
+    """A command-line mistake that Click itself cannot see (e.g. -o would overwrite a spec)."""
+
+    exit_code = EXIT_USAGE

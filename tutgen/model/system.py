@@ -1,0 +1,210 @@
+"""The validated model of a problem: frozen values holding sympy objects, no YAML left.
+
+Conventions (used by every stage after this one):
+- The world (inertial) frame has axes x, y, z; vectors are 3x1 ``sp.ImmutableMatrix`` in world
+  components unless a field says "in the body frame".
+- A body's frame has its origin at ``position`` and its axes rotated by ``rotation`` (world from
+  body: r_world = position + rotation * r_body).
+- Inertia tensors use J_ab = integral (r^2 delta_ab - a b) dm, so the off-diagonal J_xy = -integral x y dm.
+- Coordinates are plain symbols q with companions q_dot and q_ddot; a time derivative is taken by the
+  chain rule (no sympy dynamicsymbols), so results print in the spec grammar (``x_dot``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import StrEnum
+
+import sympy as sp
+
+from tutgen.errors import Location
+
+Vector = sp.ImmutableMatrix
+Matrix3 = sp.ImmutableMatrix
+
+GROUND = "ground"
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A named quantity; ``value`` is its exact SI value, or None when it stays symbolic."""
+
+    name: str
+    symbol: sp.Symbol
+    value: sp.Expr | None
+    latex: str
+    description: str | None
+    unit: str | None
+    origin: Location
+
+
+@dataclass(frozen=True)
+class Coordinate:
+    """A generalized coordinate with its velocity and acceleration symbols."""
+
+    name: str
+    q: sp.Symbol
+    qd: sp.Symbol
+    qdd: sp.Symbol
+    latex: str
+    description: str | None
+    dimension: str | None  # "length", "angle" or unknown
+    origin: Location
+
+
+class Shape(StrEnum):
+    POINT = "point"
+    BOX = "box"
+    CYLINDER = "cylinder"
+    HOLLOW_CYLINDER = "hollow_cylinder"
+    THIN_CYLINDER = "thin_cylinder"
+    ROD = "rod"
+    DISC = "disc"
+    SPHERE = "sphere"
+    SPHERICAL_SHELL = "spherical_shell"
+    GENERAL = "general"
+
+
+@dataclass(frozen=True)
+class Part:
+    """One primitive of a body, placed in the body frame.
+
+    ``dimensions`` keeps the shape's own measures by name (``radius``, ``length``, ``size``) for the
+    worked solution; ``axis`` is the unit symmetry axis (axisymmetric shapes) in body axes;
+    ``rotation`` turns a box's (or general part's) own axes into the body's.
+    """
+
+    name: str
+    shape: Shape
+    mass: sp.Expr | None  # None: computed as density * volume
+    density: sp.Expr | None
+    dimensions: tuple[tuple[str, sp.Expr | tuple[sp.Expr, ...]], ...]
+    at: Vector
+    axis: Vector | None
+    rotation: Matrix3
+    inertia: Matrix3 | None  # given directly (shape: general), about the centroid in body axes
+    origin: Location
+
+
+@dataclass(frozen=True)
+class Body:
+    """A body and its mass distribution; where it is comes from joints or from ``position``/``rotation``."""
+
+    name: str
+    parts: tuple[Part, ...]
+    position: Vector | None  # explicit kinematics (no joint places this body)
+    rotation: Matrix3 | None
+    rotation_rates: tuple[tuple[Vector, sp.Expr], ...]  # explicit: (axis in world, angle) per elementary rotation
+    origin: Location
+    is_simple: bool = False  # given as mass/com/inertia rather than parts
+
+
+class JointKind(StrEnum):
+    REVOLUTE = "revolute"
+    PRISMATIC = "prismatic"
+    FIXED = "fixed"
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A joint of the kinematic tree: the child's frame relative to the parent's.
+
+    child frame = parent frame, moved to ``origin`` (parent axes), turned by ``rotation`` (fixed), then
+    by the joint motion about/along ``axis`` (a unit vector in the axes after ``rotation``). With
+    ``absolute`` the angle is measured from the world frame: the child's rotation is the joint
+    rotation alone, about the (constant) world direction of the axis.
+    """
+
+    name: str
+    kind: JointKind
+    parent: str
+    child: str
+    coordinate: Coordinate | None
+    axis: Vector
+    origin_offset: Vector
+    rotation: Matrix3
+    offset: sp.Expr
+    absolute: bool
+    origin: Location
+
+
+@dataclass(frozen=True)
+class Endpoint:
+    body: str  # a body name or GROUND
+    at: Vector
+
+
+@dataclass(frozen=True)
+class Spring:
+    name: str
+    stiffness: sp.Expr
+    free_length: sp.Expr
+    between: tuple[Endpoint, Endpoint] | None
+    extension: sp.Expr | None
+    origin: Location
+
+
+@dataclass(frozen=True)
+class Damper:
+    name: str
+    coefficient: sp.Expr
+    between: tuple[Endpoint, Endpoint] | None
+    extension: sp.Expr | None
+    origin: Location
+
+
+@dataclass(frozen=True)
+class Load:
+    name: str
+    on: str
+    force: Vector | None
+    torque: Vector | None
+    at: Vector
+    in_body_frame: bool
+    reaction_on: str | None
+    origin: Location
+
+
+class Ask(StrEnum):
+    INERTIA = "inertia"
+    KINETIC_ENERGY = "kinetic_energy"
+    POTENTIAL_ENERGY = "potential_energy"
+    LAGRANGIAN = "lagrangian"
+    LAGRANGE_EQUATIONS = "lagrange_equations"
+    EQUATIONS_OF_MOTION = "equations_of_motion"
+    MATRIX_FORM = "matrix_form"
+    CHRISTOFFEL = "christoffel"
+
+
+@dataclass(frozen=True)
+class System:
+    """A validated problem, ready to derive."""
+
+    title: str
+    statement: str | None
+    source: str
+    parameters: tuple[Parameter, ...]
+    coordinates: tuple[Coordinate, ...]
+    bodies: tuple[Body, ...]
+    joints: tuple[Joint, ...]
+    gravity: Vector | None
+    springs: tuple[Spring, ...] = ()
+    dampers: tuple[Damper, ...] = ()
+    loads: tuple[Load, ...] = ()
+    generalized_forces: tuple[tuple[str, sp.Expr], ...] = ()  # (coordinate name, expression)
+    kinetic_energy: sp.Expr | None = None  # given directly (energy: section)
+    potential_energy: sp.Expr | None = None
+    ask: frozenset[Ask] = field(default_factory=frozenset)
+    origin: Location = field(default_factory=lambda: Location("<spec>"))
+
+    @property
+    def values(self) -> dict[sp.Symbol, sp.Expr]:
+        """Numeric parameter values, to substitute into symbolic results."""
+        return {p.symbol: p.value for p in self.parameters if p.value is not None}
+
+    def body(self, name: str) -> Body:
+        return next(b for b in self.bodies if b.name == name)
+
+    @property
+    def has_dynamics(self) -> bool:
+        return bool(self.coordinates)

@@ -1,0 +1,145 @@
+"""The JSON output: tutgen's machine contract (documented in docs/json-output.md).
+
+Numbers are JSON numbers; expressions are strings in the spec grammar, with a coordinate x's
+velocity and acceleration written x_dot and x_ddot. Keys appear only for results that apply.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+import sympy as sp
+
+from tutgen import __version__
+from tutgen.engine.derivation import Derivation
+from tutgen.model.system import Ask
+
+JSON_FORMAT_VERSION = 1
+
+
+def expr_text(expr: sp.Expr) -> str:
+    """An expression in the spec grammar (sympy's str printer: ``**`` for powers, exact fractions)."""
+    return sp.sstr(expr, order="lex")
+
+
+def value(expr: Any) -> Any:
+    """A JSON value: an int or float for numbers, a string for expressions."""
+    if isinstance(expr, (int, float)):
+        return expr
+    expr = sp.sympify(expr) if not isinstance(expr, sp.Basic) else expr
+    if expr.is_Integer:
+        return int(expr)
+    if expr.is_number:
+        if expr.is_real is False:
+            return expr_text(expr)
+        return float(sp.N(expr, 17))
+    return expr_text(expr)
+
+
+def matrix(m: sp.MatrixBase) -> list[Any]:
+    if m.shape[1] == 1:
+        return [value(e) for e in m]
+    return [[value(m[i, j]) for j in range(m.shape[1])] for i in range(m.shape[0])]
+
+
+def derivation_to_json(d: Derivation) -> dict[str, Any]:
+    """The JSON document for one derivation (numeric parameters substituted)."""
+    system = d.system
+    num = d.numeric
+    ask = system.ask
+    results: dict[str, Any] = {}
+
+    if Ask.INERTIA in ask and d.inertia:
+        bodies: dict[str, Any] = {}
+        for bi, principal in zip(d.inertia, d.principal, strict=True):
+            entry: dict[str, Any] = {
+                "mass": value(num(bi.mass)),
+                "center_of_mass": matrix(num(bi.com)),
+                "inertia_tensor": matrix(num(bi.inertia_origin)),
+                "inertia_tensor_com": matrix(num(bi.inertia_com)),
+            }
+            if principal is not None:
+                entry["principal_moments"] = list(principal.moments)
+                entry["principal_axes"] = [list(a) for a in principal.axes]
+            entry["parts"] = {
+                p.name: {
+                    "shape": p.shape.value,
+                    **({"volume": value(num(p.volume))} if p.volume is not None else {}),
+                    "mass": value(num(p.mass)),
+                    "centroid": matrix(num(p.centroid)),
+                    "axis_distances": [value(num(x)) for x in p.axis_distances],
+                    "inertia_centroid": matrix(num(p.inertia_centroid)),
+                    "inertia_tensor": matrix(num(p.inertia_origin)),
+                }
+                for p in bi.parts
+            }
+            bodies[bi.name] = entry
+        results["bodies"] = bodies
+        if len(d.inertia) == 1:
+            only = bodies[d.inertia[0].name]
+            for key in ("mass", "center_of_mass", "inertia_tensor", "principal_moments"):
+                if key in only:
+                    results[key] = only[key]
+
+    if d.kinetic_energy is not None:
+        if d.kinematics and (Ask.KINETIC_ENERGY in ask or Ask.EQUATIONS_OF_MOTION in ask):
+            results["positions"] = {k.name: matrix(num(k.com)) for k in d.kinematics}
+            results["velocities"] = {k.name: matrix(num(k.velocity)) for k in d.kinematics}
+            results["angular_velocities"] = {k.name: matrix(num(k.angular_velocity)) for k in d.kinematics}
+            results["speeds_squared"] = {e.name: value(num(e.speed_squared)) for e in d.energies}
+            results["body_kinetic_energies"] = {e.name: value(num(e.kinetic)) for e in d.energies}
+        if Ask.KINETIC_ENERGY in ask:
+            results["kinetic_energy"] = value(num(d.kinetic_energy))
+        if Ask.POTENTIAL_ENERGY in ask and d.potential_energy is not None:
+            results["potential_energy"] = value(num(d.potential_energy))
+        if Ask.LAGRANGIAN in ask and d.lagrangian is not None:
+            results["lagrangian"] = value(num(d.lagrangian))
+        if Ask.LAGRANGE_EQUATIONS in ask:
+            results["lagrange_terms"] = [
+                {
+                    "coordinate": t.coordinate,
+                    "dL_dqdot": value(num(t.dL_dqd)),
+                    "ddt_dL_dqdot": value(num(t.ddt_dL_dqd)),
+                    "dL_dq": value(num(t.dL_dq)),
+                    "generalized_force": value(num(t.generalized_force)),
+                }
+                for t in d.lagrange_terms
+            ]
+        if (Ask.EQUATIONS_OF_MOTION in ask or Ask.LAGRANGE_EQUATIONS in ask) and d.generalized_forces is not None:
+            results["generalized_forces"] = matrix(num(d.generalized_forces))
+        if Ask.MATRIX_FORM in ask or Ask.CHRISTOFFEL in ask:
+            assert d.mass_matrix is not None
+            results["mass_matrix"] = matrix(num(d.mass_matrix))
+        if Ask.MATRIX_FORM in ask:
+            assert d.coriolis_vector is not None and d.coriolis_matrix is not None and d.gravity_vector is not None
+            results["coriolis_vector"] = matrix(num(d.coriolis_vector))
+            results["coriolis_matrix"] = matrix(num(d.coriolis_matrix))
+            results["gravity_vector"] = matrix(num(d.gravity_vector))
+            if d.mass_matrix_determinant is not None:
+                results["mass_matrix_determinant"] = value(num(d.mass_matrix_determinant))
+        if Ask.EQUATIONS_OF_MOTION in ask and d.equations_of_motion is not None:
+            results["equations_of_motion"] = matrix(num(d.equations_of_motion))
+        if Ask.CHRISTOFFEL in ask:
+            results["christoffel"] = _christoffel(d.christoffel, num)
+            results["christoffel_first_kind"] = _christoffel(d.christoffel_first_kind, num)
+
+    return {
+        "tutgen": __version__,
+        "format": JSON_FORMAT_VERSION,
+        "title": system.title,
+        "coordinates": [c.name for c in system.coordinates],
+        "parameters": {p.name: (value(p.value) if p.value is not None else None) for p in system.parameters},
+        "results": results,
+        "remarks": list(d.remarks),
+        "checks": [{"name": c.name, "passed": c.passed, "detail": c.detail} for c in d.checks],
+    }
+
+
+def _christoffel(table: dict[tuple[int, int, int], sp.Expr], num: Any) -> dict[str, Any]:
+    return {f"{i + 1},{j + 1},{k + 1}": value(num(e)) for (i, j, k), e in sorted(table.items())}
+
+
+def dumps(doc: Any) -> str:
+    """Deterministic JSON text: fixed key order (as built), two-space indent, trailing newline."""
+    return json.dumps(doc, indent=2, ensure_ascii=False, allow_nan=False) + "\n"

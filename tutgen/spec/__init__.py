@@ -1,0 +1,1 @@
+"""Reading and checking spec files: safe YAML loading, the schema, cross-references."""

@@ -1,0 +1,489 @@
+"""The shape of a spec (format v1): every key, its type and its meaning, declared in one place.
+
+The pydantic models below are the reference of the spec format: the JSON Schema that
+``tutgen schema`` prints is generated from them, and ``docs/spec-format.md`` follows them.
+A spec key, the model field and (later) the template variable share one snake_case name.
+
+Only the *shape* is checked here. Names, expressions, units and cross-references (a joint's
+parent must be a body, an expression may use only declared names) are checked in
+:mod:`tutgen.spec.validate`, which turns a :class:`SpecDoc` into a :class:`tutgen.model.System`.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema
+from pydantic_core import PydanticCustomError
+
+SPEC_FORMAT_VERSION = 1
+
+# ---------------------------------------------------------------------------------------------
+# Scalars: expressions, vectors, names
+# ---------------------------------------------------------------------------------------------
+
+
+def _describe(value: Any) -> str:
+    """A user-facing name for what was found (never a Python repr of a class)."""
+    if value is None:
+        return "nothing (null)"
+    if isinstance(value, bool):
+        return f"the boolean {str(value).lower()}"
+    if isinstance(value, dict):
+        return "a mapping"
+    if isinstance(value, list):
+        return f"a list of {len(value)} item{'s' if len(value) != 1 else ''}"
+    if isinstance(value, str):
+        return f"the text '{value}'" if len(value) <= 40 else "a long text"
+    return f"the number {value}"
+
+
+def _expr_scalar(value: Any) -> Any:
+    if isinstance(value, bool) or not isinstance(value, (str, int, float)):
+        raise PydanticCustomError(
+            "tutgen_expr", "expected an expression or a number, found {found}", {"found": _describe(value)}
+        )
+    return value
+
+
+def _vector3(value: Any) -> Any:
+    if not isinstance(value, list) or len(value) != 3:
+        raise PydanticCustomError(
+            "tutgen_vector",
+            "expected a vector of 3 components [x, y, z], found {found}",
+            {"found": _describe(value)},
+        )
+    return value
+
+
+def _text(value: Any) -> Any:
+    if not isinstance(value, str):
+        raise PydanticCustomError("tutgen_text", "expected a text, found {found}", {"found": _describe(value)})
+    return value
+
+
+_EXPR_SCHEMA = {
+    "anyOf": [{"type": "string"}, {"type": "number"}],
+    "description": "An expression (e.g. 'm1 + m2', 'l*sin(theta)'), a number, or a number with a unit "
+    "('15 cm', '7849 kg/m^3').",
+}
+
+#: An expression in the spec grammar, a number, or a number with a unit.
+Expr = Annotated[Any, BeforeValidator(_expr_scalar), WithJsonSchema(_EXPR_SCHEMA)]
+#: A text shown to the reader (titles, statements, descriptions).
+Text = Annotated[str, BeforeValidator(_text)]
+#: Three components [x, y, z], each an expression.
+Vector3 = Annotated[
+    list[Expr],
+    BeforeValidator(_vector3),
+    WithJsonSchema({"type": "array", "items": _EXPR_SCHEMA, "minItems": 3, "maxItems": 3}),
+]
+#: A name declared in the spec (a body, a joint, a coordinate, a parameter).
+Name = Annotated[str, BeforeValidator(_text)]
+
+AxisName = Literal["x", "y", "z", "-x", "-y", "-z", "+x", "+y", "+z"]
+
+
+class SpecModel(BaseModel):
+    """Base of every part of a spec: unknown keys are errors, so typos are caught."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=False)
+
+
+# ---------------------------------------------------------------------------------------------
+# Parameters and coordinates
+# ---------------------------------------------------------------------------------------------
+
+DimensionName = Literal[
+    "dimensionless",
+    "angle",
+    "mass",
+    "length",
+    "time",
+    "area",
+    "volume",
+    "density",
+    "velocity",
+    "acceleration",
+    "angular_velocity",
+    "force",
+    "torque",
+    "energy",
+    "power",
+    "inertia",
+    "stiffness",
+    "torsional_stiffness",
+    "damping",
+    "torsional_damping",
+    "frequency",
+    "pressure",
+]
+
+
+class ParameterSpec(SpecModel):
+    """A named quantity of the problem: symbolic (no value) or numeric (a value, with a unit)."""
+
+    value: Expr | None = Field(
+        None, description="A number, or a number with a unit ('15 cm'); omitted: the parameter stays symbolic."
+    )
+    latex: Text | None = Field(None, description="How to typeset the name, e.g. '\\tau_1' (default: from the name).")
+    description: Text | None = Field(None, description="What the parameter is, for the reader.")
+    dimension: DimensionName | None = Field(
+        None, description="The physical dimension; a value whose unit has another dimension is an error."
+    )
+
+
+def _parameters(value: Any) -> Any:
+    """Shorthands: a list of names (all symbolic); `name:` (symbolic); `name: 15 cm` (a value)."""
+    if isinstance(value, list):
+        out: dict[Any, Any] = {}
+        for item in value:
+            if not isinstance(item, str):
+                raise PydanticCustomError(
+                    "tutgen_names", "expected a list of names, found {found} in it", {"found": _describe(item)}
+                )
+            out[item] = {}
+        return out
+    if isinstance(value, dict):
+        return {k: ({} if v is None else {"value": v} if not isinstance(v, dict) else v) for k, v in value.items()}
+    return value
+
+
+class CoordinateSpec(SpecModel):
+    """A generalized coordinate q_i. Its velocity is written NAME_dot and its acceleration NAME_ddot."""
+
+    latex: Text | None = Field(None, description="How to typeset the name, e.g. '\\theta_1'.")
+    description: Text | None = Field(None, description="What the coordinate measures, for the reader.")
+    dimension: Literal["length", "angle"] | None = Field(
+        None, description="'length' or 'angle'; inferred from the joint that uses it when omitted."
+    )
+
+
+def _coordinates(value: Any) -> Any:
+    if isinstance(value, list):
+        return _parameters(value)
+    if isinstance(value, dict):
+        return {k: ({} if v is None else v) for k, v in value.items()}
+    return value
+
+
+# ---------------------------------------------------------------------------------------------
+# Gravity
+# ---------------------------------------------------------------------------------------------
+
+
+class GravitySpec(SpecModel):
+    """Uniform gravity: the acceleration vector, or its magnitude and direction."""
+
+    vector: Vector3 | None = Field(None, description="The acceleration of gravity, e.g. [0, -g, 0].")
+    g: Expr | None = Field(None, description="The magnitude, e.g. g or '9.81 m/s^2' (with `direction`).")
+    direction: AxisName | Vector3 | None = Field(
+        None, description="Where gravity points: '-y', '-z' or a vector (with `g`)."
+    )
+
+
+def _gravity(value: Any) -> Any:
+    if isinstance(value, list):
+        return {"vector": value}
+    return value
+
+
+# ---------------------------------------------------------------------------------------------
+# Rotations, parts and bodies
+# ---------------------------------------------------------------------------------------------
+
+
+class RotationSpec(SpecModel):
+    """One elementary rotation about a body-fixed axis by an angle."""
+
+    axis: AxisName | Vector3 = Field(description="'x', 'y', 'z' (or negated), or a vector.")
+    angle: Expr = Field(description="The angle: an expression of the coordinates, or '30 deg'.")
+
+
+Orientation = Annotated[
+    list[RotationSpec],
+    Field(description="Rotations applied in order, each about the axes as already rotated (intrinsic)."),
+]
+
+
+class _PartBase(SpecModel):
+    at: Vector3 | None = Field(None, description="Where the part's centroid is, in the body frame (default origin).")
+
+
+class _SolidPart(_PartBase):
+    mass: Expr | None = Field(None, description="The mass; or give `density`.")
+    density: Expr | None = Field(None, description="The density (kg/m^3); the mass is density x volume.")
+
+
+class PointPart(_PartBase):
+    """A point mass."""
+
+    shape: Literal["point"]
+    mass: Expr = Field(description="The mass.")
+
+
+class BoxPart(_SolidPart):
+    """A solid rectangular block with edges along the part's axes."""
+
+    shape: Literal["box"]
+    size: Vector3 = Field(description="Edge lengths along x, y, z.")
+    orientation: Orientation | None = None
+
+
+class CylinderPart(_SolidPart):
+    """A solid circular cylinder."""
+
+    shape: Literal["cylinder"]
+    radius: Expr
+    length: Expr
+    axis: AxisName | Vector3 = Field("z", description="The direction of the cylinder's axis.")
+
+
+class HollowCylinderPart(_SolidPart):
+    """A thick-walled tube (inner radius 0 gives a solid cylinder)."""
+
+    shape: Literal["hollow_cylinder"]
+    outer_radius: Expr
+    inner_radius: Expr
+    length: Expr
+    axis: AxisName | Vector3 = Field("z", description="The direction of the tube's axis.")
+
+
+class ThinShellCylinderPart(_SolidPart):
+    """A thin-walled tube (all mass at one radius); needs `mass`."""
+
+    shape: Literal["thin_cylinder"]
+    radius: Expr
+    length: Expr
+    axis: AxisName | Vector3 = Field("z", description="The direction of the tube's axis.")
+
+
+class RodPart(_SolidPart):
+    """A slender rod (its thickness neglected); needs `mass`."""
+
+    shape: Literal["rod"]
+    length: Expr
+    axis: AxisName | Vector3 = Field("x", description="The direction along the rod.")
+
+
+class DiscPart(_SolidPart):
+    """A thin circular disc (its thickness neglected); needs `mass`."""
+
+    shape: Literal["disc"]
+    radius: Expr
+    axis: AxisName | Vector3 = Field("z", description="The disc's normal.")
+
+
+class SpherePart(_SolidPart):
+    """A solid sphere."""
+
+    shape: Literal["sphere"]
+    radius: Expr
+
+
+class SphericalShellPart(_SolidPart):
+    """A thin spherical shell; needs `mass`."""
+
+    shape: Literal["spherical_shell"]
+    radius: Expr
+
+
+class InertiaSpec(SpecModel):
+    """An inertia tensor about the centroid, in the part's (or body's) axes: J_ab = integral (r^2 d_ab - a b) dm."""
+
+    xx: Expr = 0
+    yy: Expr = 0
+    zz: Expr = 0
+    xy: Expr = Field(0, description="J_xy = -integral x y dm (the product of inertia, negated).")
+    xz: Expr = 0
+    yz: Expr = 0
+
+
+class GeneralPart(_PartBase):
+    """Any rigid part given by its mass and centroidal inertia tensor."""
+
+    shape: Literal["general"]
+    mass: Expr
+    inertia: InertiaSpec = Field(description="About the part's centroid, in the body's axes.")
+
+
+Part = Annotated[
+    PointPart
+    | BoxPart
+    | CylinderPart
+    | HollowCylinderPart
+    | ThinShellCylinderPart
+    | RodPart
+    | DiscPart
+    | SpherePart
+    | SphericalShellPart
+    | GeneralPart,
+    Field(discriminator="shape"),
+]
+
+SHAPES = (
+    "point",
+    "box",
+    "cylinder",
+    "hollow_cylinder",
+    "thin_cylinder",
+    "rod",
+    "disc",
+    "sphere",
+    "spherical_shell",
+    "general",
+)
+
+
+class BodySpec(SpecModel):
+    """A body: a point mass (`mass`, `com`), a rigid body (`mass`, `com`, `inertia`) or a composite of `parts`.
+
+    Its placement comes from `joints` (the body frame is the joint frame) or, without joints, from
+    `position` and `orientation` given as expressions of the coordinates.
+    """
+
+    mass: Expr | None = Field(None, description="The mass (a point mass unless `inertia` is given).")
+    com: Vector3 | None = Field(None, description="The centre of mass in the body frame (default origin).")
+    inertia: InertiaSpec | None = Field(None, description="The inertia tensor about the centre of mass.")
+    parts: dict[Name, Part] | None = Field(
+        None, description="Primitive shapes and point masses that make up the body, each placed in the body frame."
+    )
+    position: Vector3 | None = Field(
+        None, description="Where the body frame's origin is, in the world frame, as expressions of the coordinates."
+    )
+    orientation: Orientation | None = None
+    description: Text | None = None
+
+
+# ---------------------------------------------------------------------------------------------
+# Joints, springs, dampers, loads
+# ---------------------------------------------------------------------------------------------
+
+
+class JointSpec(SpecModel):
+    """A joint that places `child` relative to `parent` (a body, or `ground`)."""
+
+    type: Literal["revolute", "prismatic", "fixed"]
+    parent: Name = Field(description="A body name, or 'ground'.")
+    child: Name = Field(description="The body that this joint moves.")
+    coordinate: Name | None = Field(None, description="The coordinate of the joint (none for 'fixed').")
+    axis: AxisName | Vector3 = Field("z", description="The joint axis, in the parent's frame.")
+    origin: Vector3 | None = Field(None, description="Where the joint is, in the parent's frame (default origin).")
+    orientation: Orientation | None = Field(
+        None, description="A fixed rotation of the child's frame at the joint, before the joint moves."
+    )
+    offset: Expr | None = Field(None, description="A constant added to the coordinate (angle or length).")
+    angle: Literal["relative", "absolute"] = Field(
+        "relative",
+        description="'relative': the coordinate is measured from the parent link; 'absolute': from the world "
+        "frame (planar arms driven from the base, e.g. through a belt).",
+    )
+
+
+class EndpointSpec(SpecModel):
+    """A point on a body (or on the ground), for springs, dampers and loads."""
+
+    body: Name = Field(description="A body name, or 'ground'.")
+    at: Vector3 | None = Field(None, description="The point in that body's frame (default its origin).")
+
+
+def _endpoint(value: Any) -> Any:
+    if isinstance(value, str):
+        return {"body": value}
+    return value
+
+
+Endpoint = Annotated[EndpointSpec, BeforeValidator(_endpoint)]
+
+
+class _ElementSpec(SpecModel):
+    between: Annotated[list[Endpoint], Field(min_length=2, max_length=2)] | None = Field(
+        None, description="The two attachment points; the elongation is their distance minus `free_length`."
+    )
+    extension: Expr | None = Field(
+        None, description="Or the elongation directly, as an expression of the coordinates (e.g. 'x')."
+    )
+    description: Text | None = None
+
+
+class SpringSpec(_ElementSpec):
+    """A linear spring: U = k (L - L0)^2 / 2."""
+
+    stiffness: Expr
+    free_length: Expr | None = Field(None, description="L0 (with `between`; default 0).")
+
+
+class DamperSpec(_ElementSpec):
+    """A viscous damper: the Rayleigh dissipation D = c (dL/dt)^2 / 2 gives Q_i = -dD/d(q_i_dot)."""
+
+    coefficient: Expr
+
+
+class LoadSpec(SpecModel):
+    """An applied force and/or torque on a body; its reaction (if any) on another body."""
+
+    on: Name = Field(description="The body the load acts on.")
+    force: Vector3 | None = Field(None, description="The force, in world components unless `frame: body`.")
+    torque: Vector3 | None = Field(None, description="The torque, in world components unless `frame: body`.")
+    at: Vector3 | None = Field(None, description="Where the force acts, in the body frame (default the origin).")
+    frame: Literal["world", "body"] = Field("world", description="The frame the components are given in.")
+    reaction_on: Name | None = Field(
+        None, description="The body that takes the reaction torque (a motor's stator), e.g. 'ground'."
+    )
+    description: Text | None = None
+
+
+class EnergySpec(SpecModel):
+    """A system given directly by its energies (no bodies)."""
+
+    kinetic: Expr = Field(description="T as an expression of the coordinates and their velocities (NAME_dot).")
+    potential: Expr | None = Field(None, description="U as an expression of the coordinates (default 0).")
+
+
+AskItem = Literal[
+    "inertia",
+    "kinetic_energy",
+    "potential_energy",
+    "lagrangian",
+    "lagrange_equations",
+    "equations_of_motion",
+    "matrix_form",
+    "christoffel",
+]
+
+
+class SpecDoc(SpecModel):
+    """A tutgen spec: one mechanics problem."""
+
+    tutgen: Literal[1] | None = Field(None, description="The spec format version (1).")
+    title: Text = Field(description="The problem's title.")
+    statement: Text | None = Field(None, description="The problem statement, shown in the worked solution.")
+    parameters: Annotated[dict[Name, ParameterSpec], BeforeValidator(_parameters)] = Field(
+        default_factory=dict,
+        description="Named quantities: `m1:` (symbolic), `rho: 7849 kg/m^3` (numeric), or a list of names.",
+    )
+    coordinates: Annotated[dict[Name, CoordinateSpec], BeforeValidator(_coordinates)] = Field(
+        default_factory=dict, description="The generalized coordinates, in order: a list of names or a mapping."
+    )
+    gravity: Annotated[GravitySpec, BeforeValidator(_gravity)] | None = Field(
+        None, description="[0, -g, 0], or {g: g, direction: -y}."
+    )
+    bodies: dict[Name, BodySpec] = Field(default_factory=dict, description="The bodies, by name.")
+    joints: dict[Name, JointSpec] = Field(default_factory=dict, description="The joints of a kinematic tree.")
+    springs: dict[Name, SpringSpec] = Field(default_factory=dict)
+    dampers: dict[Name, DamperSpec] = Field(default_factory=dict)
+    loads: dict[Name, LoadSpec] = Field(default_factory=dict, description="Applied forces and torques.")
+    generalized_forces: dict[Name, Expr] = Field(
+        default_factory=dict, description="Forces acting along coordinates directly: {x: F, theta: tau}."
+    )
+    energy: EnergySpec | None = None
+    ask: list[AskItem] | None = Field(None, description="What to derive (default: everything that applies).")
+
+
+def json_schema() -> dict[str, Any]:
+    """The JSON Schema of the spec format (draft 2020-12), for editors."""
+    schema = SpecDoc.model_json_schema()
+    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    schema["$id"] = "https://tutgen.invalid/schema/spec-v1.json"
+    schema["title"] = "tutgen spec, format v1"
+    return schema
