@@ -208,21 +208,21 @@ def _generalized_forces(
         out[i] = out[i] + value
     for load in system.loads:
         assert kin is not None
-        frame = kin.frames[load.on]
+        frame = kin.frames[load.body]
         rot = frame.rotation if load.in_body_frame else sp.eye(3)
         if load.force is not None:
             force = rot * sp.Matrix(load.force)
-            where = kin.point(load.on, load.at)
-            jac = kin.point_jacobian(load.on, where)
-            if load.reaction_on is not None and load.reaction_on != GROUND:
-                jac = jac - kin.point_jacobian(load.reaction_on, where)
+            where = kin.point(load.body, load.at)
+            jac = kin.point_jacobian(load.body, where)
+            if load.reaction_body is not None and load.reaction_body != GROUND:
+                jac = jac - kin.point_jacobian(load.reaction_body, where)
             for i in range(n):
                 out[i] = out[i] + (force.T * jac[:, i])[0]
         if load.torque is not None:
             torque = rot * sp.Matrix(load.torque)
             jw = frame.jw
-            if load.reaction_on is not None and load.reaction_on != GROUND:
-                jw = jw - kin.frames[load.reaction_on].jw
+            if load.reaction_body is not None and load.reaction_body != GROUND:
+                jw = jw - kin.frames[load.reaction_body].jw
             for i in range(n):
                 out[i] = out[i] + (torque.T * jw[:, i])[0]
     for damper in system.dampers:

@@ -156,12 +156,12 @@ class Damper:
 @dataclass(frozen=True)
 class Load:
     name: str
-    on: str
+    body: str
     force: Vector | None
     torque: Vector | None
     at: Vector
     in_body_frame: bool
-    reaction_on: str | None
+    reaction_body: str | None
     origin: Location
 
 

@@ -26,6 +26,15 @@ class Section:
     lines: list[str] = field(default_factory=list)  # Markdown paragraphs; maths already in $$ blocks
 
 
+def _chain(name: str, *forms: str) -> str:
+    """name = form1 = form2, without repeating a form that prints the same."""
+    shown: list[str] = []
+    for f in forms:
+        if f not in shown:
+            shown.append(f)
+    return " = ".join([name, *shown])
+
+
 def _display(tex: str) -> str:
     return f"$$\n{tex}\n$$"
 
@@ -55,11 +64,13 @@ def solution_view(d: Derivation) -> dict[str, object]:
             "frame's origin by the parallel-axis theorem $J_O = J_G + m(|d|^2 E - d d^T)$.",
         )
         for bi, principal in zip(d.inertia, d.principal, strict=True):
+            if s.coordinates and all(p.shape.value == "point" for p in bi.parts) and len(bi.parts) <= 1:
+                continue  # a lone point mass: its inertia is m r^2 in the energies, nothing to tabulate
             for p in bi.parts:
                 lines = [f"**{md_escape(bi.name)} / {md_escape(p.name)}** ({p.shape.value.replace('_', ' ')})"]
                 if p.volume is not None:
-                    lines.append(_display(f"V = {tex(p.volume)} = {tex(sp.N(num(p.volume), 4))}"))
-                lines.append(_display(f"m = {tex(p.mass)} = {tex(sp.N(num(p.mass), 4))}"))
+                    lines.append(_display(_chain("V", tex(p.volume), tex(sp.N(num(p.volume), 4)))))
+                lines.append(_display(_chain("m", tex(p.mass), tex(sp.N(num(p.mass), 4)))))
                 lines.append("About its centroid:")
                 lines.append(_display(f"J_G = {tex(sp.N(num(p.inertia_centroid), 4))}"))
                 if any(x != 0 for x in p.centroid):

@@ -422,13 +422,14 @@ class DamperSpec(_ElementSpec):
 class LoadSpec(SpecModel):
     """An applied force and/or torque on a body; its reaction (if any) on another body."""
 
-    on: Name = Field(description="The body the load acts on.")
+    # not `on:`, which YAML 1.1 tools (PyYAML, some editors) read as the boolean true
+    body: Name = Field(description="The body the load acts on.")
     force: Vector3 | None = Field(None, description="The force, in world components unless `frame: body`.")
     torque: Vector3 | None = Field(None, description="The torque, in world components unless `frame: body`.")
     at: Vector3 | None = Field(None, description="Where the force acts, in the body frame (default the origin).")
     frame: Literal["world", "body"] = Field("world", description="The frame the components are given in.")
-    reaction_on: Name | None = Field(
-        None, description="The body that takes the reaction torque (a motor's stator), e.g. 'ground'."
+    reaction_body: Name | None = Field(
+        None, description="The body that takes the reaction (a motor's stator), e.g. 'ground'; none if omitted."
     )
     description: Text | None = None
 
@@ -483,6 +484,38 @@ class SpecDoc(SpecModel):
 def json_schema() -> dict[str, Any]:
     """The JSON Schema of the spec format (draft 2020-12), for editors."""
     schema = SpecDoc.model_json_schema()
+    # the shorthands that the BeforeValidators accept, which pydantic cannot see
+    props, defs = schema["properties"], schema["$defs"]
+    names = {"type": "array", "items": {"type": "string"}}
+    props["parameters"] = {
+        "description": props["parameters"]["description"],
+        "anyOf": [
+            names,
+            {
+                "type": "object",
+                "additionalProperties": {"anyOf": [{"type": "null"}, _EXPR_SCHEMA, {"$ref": "#/$defs/ParameterSpec"}]},
+            },
+        ],
+    }
+    props["coordinates"] = {
+        "description": props["coordinates"]["description"],
+        "anyOf": [
+            names,
+            {
+                "type": "object",
+                "additionalProperties": {"anyOf": [{"type": "null"}, {"$ref": "#/$defs/CoordinateSpec"}]},
+            },
+        ],
+    }
+    vector = {"type": "array", "items": _EXPR_SCHEMA, "minItems": 3, "maxItems": 3}
+    props["gravity"] = {
+        "description": props["gravity"]["description"],
+        "anyOf": [vector, {"$ref": "#/$defs/GravitySpec"}, {"type": "null"}],
+    }
+    endpoint = {"anyOf": [{"type": "string"}, {"$ref": "#/$defs/EndpointSpec"}]}
+    for element in ("SpringSpec", "DamperSpec"):
+        between = defs[element]["properties"]["between"]
+        between["anyOf"][0]["items"] = endpoint
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["$id"] = "https://tutgen.invalid/schema/spec-v1.json"
     schema["title"] = "tutgen spec, format v1"
