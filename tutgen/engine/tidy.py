@@ -10,24 +10,36 @@ import random
 from collections.abc import Iterable, Sequence
 
 import sympy as sp
+from sympy.simplify.fu import TR8
 
 
 def tidy(expr: sp.Expr) -> sp.Expr:
-    """Expand, combine trigonometric products (cos a cos b - sin a sin b = cos(a + b),
-    sin^2 + cos^2 = 1), and pull common factors out of sums.
+    """The shortest of three forms of a trigonometric polynomial: as expanded, as a sum of sines
+    and cosines of combined angles (products turned into sums, so cos a cos b - sin a sin b becomes
+    cos(a - b)... and sin^2 + cos^2 becomes 1), and as a polynomial in the sines and cosines of
+    single angles (cos(2t) back to cos(t)^2). Each is cheap: no ``trigsimp``/``simplify`` search.
 
     Examples
     ========
     >>> import sympy as sp
-    >>> a, t = sp.symbols("a t")
+    >>> a, t, u = sp.symbols("a t u")
     >>> tidy(a*sp.sin(t)**2 + a*sp.cos(t)**2)
     a
+    >>> tidy(sp.cos(t)*sp.cos(t + u) + sp.sin(t)*sp.sin(t + u))
+    cos(u)
     """
     e = sp.expand(expr)
-    if e.is_number or not e.has(sp.sin, sp.cos, sp.tan):
+    if e.is_number or not e.has(sp.sin, sp.cos):
         return e
-    s = sp.trigsimp(e)
-    return sp.expand(s) if sp.count_ops(sp.expand(s)) <= sp.count_ops(s) else s
+    combined = sp.expand(TR8(e))
+    reduced = trig_reduce(combined) if _single_angles(combined) else combined
+    # on a tie, prefer powers of single angles (cos(t)**2) to multiple angles (cos(2*t))
+    return min((e, reduced, combined), key=lambda c: (sp.count_ops(c), c is combined))
+
+
+def _single_angles(expr: sp.Expr) -> bool:
+    """True when every sine and cosine has a multiple of one symbol as its argument."""
+    return all(len(f.args[0].free_symbols) <= 1 for f in expr.atoms(sp.sin, sp.cos))
 
 
 def tidy_rates(expr: sp.Expr, rates: Sequence[sp.Symbol]) -> sp.Expr:
