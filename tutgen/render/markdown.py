@@ -88,7 +88,8 @@ def solution_view(d: Derivation) -> dict[str, object]:
                 sec.lines.append(
                     "Principal moments: " + ", ".join(f"${sp.latex(sp.Float(x, 4))}$" for x in principal.moments) + "."
                 )
-        sections.append(sec)
+        if sec.lines:
+            sections.append(sec)
 
     if d.kinematics and d.kinetic_energy is not None:
         sec = Section("Kinematics", "Position and velocity of each centre of mass, in world axes.")
@@ -103,11 +104,13 @@ def solution_view(d: Derivation) -> dict[str, object]:
         sections.append(sec)
 
     if d.kinetic_energy is not None and (Ask.KINETIC_ENERGY in s.ask or Ask.EQUATIONS_OF_MOTION in s.ask):
-        sec = Section(
-            "Energies",
-            "$T = \\sum \\tfrac12 m v_G^2 + \\tfrac12 \\omega^T J_G \\omega$ and "
-            "$U = -\\sum m\\,\\mathbf g\\cdot\\mathbf r_G$ plus the springs.",
+        intro = (
+            "The kinetic energy is given in the problem."
+            if s.kinetic_energy is not None
+            else "$T = \\sum \\tfrac12 m v_G^2 + \\tfrac12 \\omega^T J_G \\omega$ and "
+            "$U = -\\sum m\\,\\mathbf g\\cdot\\mathbf r_G$ plus the springs."
         )
+        sec = Section("Energies", intro)
         for e in d.energies:
             sec.lines.append(_display(f"T_{{\\mathrm{{{e.name}}}}} = {tex(num(e.kinetic))}"))
         sec.lines.append(_display(f"T = {tex(num(d.kinetic_energy))}"))

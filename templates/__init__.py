@@ -1,0 +1,1 @@
+"""Jinja templates of the worked solutions (installed as the package data `tutgen.templates`)."""
