@@ -71,7 +71,8 @@ class Part:
 
     ``dimensions`` keeps the shape's own measures by name (``radius``, ``length``, ``size``) for the
     worked solution; ``axis`` is the unit symmetry axis (axisymmetric shapes) in body axes;
-    ``rotation`` turns a box's (or general part's) own axes into the body's.
+    ``rotation`` turns a box's own axes into the body's (identity for every other shape; a general
+    part gives its inertia in the body's axes directly).
     """
 
     name: str
@@ -94,7 +95,9 @@ class Body:
     parts: tuple[Part, ...]
     position: Vector | None  # explicit kinematics (no joint places this body)
     rotation: Matrix3 | None
-    rotation_rates: tuple[tuple[Vector, sp.Expr], ...]  # explicit: (axis in world, angle) per elementary rotation
+    # explicit kinematics: (axis, angle) per elementary rotation, each about the body's axes as
+    # already turned by the rotations before it (intrinsic)
+    rotation_rates: tuple[tuple[Vector, sp.Expr], ...]
     origin: Location
     is_simple: bool = False  # given as mass/com/inertia rather than parts
 

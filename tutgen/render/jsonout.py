@@ -10,6 +10,7 @@ import json
 from typing import Any
 
 import sympy as sp
+from sympy.printing.str import StrPrinter
 
 from tutgen import __version__
 from tutgen.engine.derivation import Derivation
@@ -18,9 +19,19 @@ from tutgen.model.system import Ask
 JSON_FORMAT_VERSION = 1
 
 
+class _GrammarPrinter(StrPrinter):
+    """sympy's str printer, kept inside the spec grammar (which has no constant E)."""
+
+    def _print_Exp1(self, expr: sp.Basic) -> str:
+        return "exp(1)"
+
+
+_PRINTER = _GrammarPrinter({"order": "lex"})
+
+
 def expr_text(expr: sp.Expr) -> str:
-    """An expression in the spec grammar (sympy's str printer: ``**`` for powers, exact fractions)."""
-    return sp.sstr(expr, order="lex")
+    """An expression in the spec grammar (``**`` for powers, exact fractions, ``exp(1)`` for e)."""
+    return _PRINTER.doprint(expr)
 
 
 def value(expr: Any) -> Any:
@@ -37,9 +48,13 @@ def value(expr: Any) -> Any:
     return expr_text(expr)
 
 
+def vector(m: sp.MatrixBase) -> list[Any]:
+    """A column (or any vector) as a flat JSON list."""
+    return [value(e) for e in m]
+
+
 def matrix(m: sp.MatrixBase) -> list[Any]:
-    if m.shape[1] == 1:
-        return [value(e) for e in m]
+    """A matrix as a list of rows, whatever its shape (a 1 x 1 matrix stays [[x]])."""
     return [[value(m[i, j]) for j in range(m.shape[1])] for i in range(m.shape[0])]
 
 
@@ -55,7 +70,7 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
         for bi, principal in zip(d.inertia, d.principal, strict=True):
             entry: dict[str, Any] = {
                 "mass": value(num(bi.mass)),
-                "center_of_mass": matrix(num(bi.com)),
+                "center_of_mass": vector(num(bi.com)),
                 "inertia_tensor": matrix(num(bi.inertia_origin)),
                 "inertia_tensor_com": matrix(num(bi.inertia_com)),
             }
@@ -67,7 +82,7 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
                     "shape": p.shape.value,
                     **({"volume": value(num(p.volume))} if p.volume is not None else {}),
                     "mass": value(num(p.mass)),
-                    "centroid": matrix(num(p.centroid)),
+                    "centroid": vector(num(p.centroid)),
                     "axis_distances": [value(num(x)) for x in p.axis_distances],
                     "inertia_centroid": matrix(num(p.inertia_centroid)),
                     "inertia_tensor": matrix(num(p.inertia_origin)),
@@ -84,9 +99,9 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
 
     if d.kinetic_energy is not None:
         if d.kinematics and (Ask.KINETIC_ENERGY in ask or Ask.EQUATIONS_OF_MOTION in ask):
-            results["positions"] = {k.name: matrix(num(k.com)) for k in d.kinematics}
-            results["velocities"] = {k.name: matrix(num(k.velocity)) for k in d.kinematics}
-            results["angular_velocities"] = {k.name: matrix(num(k.angular_velocity)) for k in d.kinematics}
+            results["positions"] = {k.name: vector(num(k.com)) for k in d.kinematics}
+            results["velocities"] = {k.name: vector(num(k.velocity)) for k in d.kinematics}
+            results["angular_velocities"] = {k.name: vector(num(k.angular_velocity)) for k in d.kinematics}
             results["speeds_squared"] = {e.name: value(num(e.speed_squared)) for e in d.energies}
             results["body_kinetic_energies"] = {e.name: value(num(e.kinetic)) for e in d.energies}
         if Ask.KINETIC_ENERGY in ask:
@@ -107,19 +122,19 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
                 for t in d.lagrange_terms
             ]
         if (Ask.EQUATIONS_OF_MOTION in ask or Ask.LAGRANGE_EQUATIONS in ask) and d.generalized_forces is not None:
-            results["generalized_forces"] = matrix(num(d.generalized_forces))
+            results["generalized_forces"] = vector(num(d.generalized_forces))
         if Ask.MATRIX_FORM in ask or Ask.CHRISTOFFEL in ask:
             assert d.mass_matrix is not None
             results["mass_matrix"] = matrix(num(d.mass_matrix))
         if Ask.MATRIX_FORM in ask:
             assert d.coriolis_vector is not None and d.coriolis_matrix is not None and d.gravity_vector is not None
-            results["coriolis_vector"] = matrix(num(d.coriolis_vector))
+            results["coriolis_vector"] = vector(num(d.coriolis_vector))
             results["coriolis_matrix"] = matrix(num(d.coriolis_matrix))
-            results["gravity_vector"] = matrix(num(d.gravity_vector))
+            results["gravity_vector"] = vector(num(d.gravity_vector))
             if d.mass_matrix_determinant is not None:
                 results["mass_matrix_determinant"] = value(num(d.mass_matrix_determinant))
         if Ask.EQUATIONS_OF_MOTION in ask and d.equations_of_motion is not None:
-            results["equations_of_motion"] = matrix(num(d.equations_of_motion))
+            results["equations_of_motion"] = vector(num(d.equations_of_motion))
         if Ask.CHRISTOFFEL in ask:
             results["christoffel"] = _christoffel(d.christoffel, num)
             results["christoffel_first_kind"] = _christoffel(d.christoffel_first_kind, num)

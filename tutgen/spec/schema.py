@@ -367,7 +367,9 @@ class JointSpec(SpecModel):
     parent: Name = Field(description="A body name, or 'ground'.")
     child: Name = Field(description="The body that this joint moves.")
     coordinate: Name | None = Field(None, description="The coordinate of the joint (none for 'fixed').")
-    axis: AxisName | Vector3 = Field("z", description="The joint axis, in the parent's frame.")
+    axis: AxisName | Vector3 = Field(
+        "z", description="The joint axis, in the parent's frame as turned by `orientation` (if given)."
+    )
     origin: Vector3 | None = Field(None, description="Where the joint is, in the parent's frame (default origin).")
     orientation: Orientation | None = Field(
         None, description="A fixed rotation of the child's frame at the joint, before the joint moves."

@@ -12,7 +12,7 @@ Unit expressions::
     atom   := UNIT_NAME | "(" unit ")" | "1"
 
 ``/`` divides by the factor right after it only, exactly as in arithmetic: ``kg/m^3`` is kg·m⁻³,
-``N*s/m`` is N·s·m⁻¹, but ``a/b*c`` is (a/b)·c, so ``W/m*K`` would be W·K/m: write ``a/(b*c)``
+``N*s/m`` is N·s·m⁻¹, but ``a/b*c`` is (a/b)·c, so ``J/kg*s`` would be J·s/kg: write ``a/(b*c)``
 (or ``a/b/c``) to divide by a product. ``1`` is allowed as a factor so that ``1/s`` works.
 Angles (``rad``, ``deg``, ``rev``) are dimensionless.
 """
