@@ -76,19 +76,27 @@ def trig_reduce(expr: sp.Expr) -> sp.Expr:
 def numerically_zero(expr: sp.Expr, trials: int = 8, seed: int = 4245) -> bool:
     """True when the expression vanishes (to 1e-9, relatively) at random points in (0.3, 2.7).
 
-    Deterministic: a fixed seed, evaluated with sympy's own arbitrary-precision evaluation.
+    Deterministic: a fixed seed, evaluated with sympy's own arbitrary-precision evaluation. A point
+    where the expression is not finite (a pole) is skipped; with no usable point the answer is False.
     """
     free = sorted(expr.free_symbols, key=lambda s: s.name)
     rng = random.Random(seed)
-    for _ in range(trials):
+    used = 0
+    for _ in range(4 * trials):
+        if used == trials:
+            break
         point = {s: sp.Rational(rng.randint(300, 2700), 1000) for s in free}
         value = sp.N(expr.subs(point), 30)
-        if not value.is_number:
-            return False
-        scale = max(1.0, max((abs(float(sp.N(a.subs(point), 15))) for a in sp.Add.make_args(expr)), default=1.0))
+        if not value.is_number or value.has(sp.zoo, sp.oo, sp.nan, -sp.oo):
+            continue
+        terms = [sp.N(a.subs(point), 15) for a in sp.Add.make_args(expr)]
+        if any(t.has(sp.zoo, sp.oo, sp.nan, -sp.oo) or not t.is_number for t in terms):
+            continue
+        used += 1
+        scale = max([1.0, *(abs(complex(t)) for t in terms)])
         if abs(complex(value)) > 1e-9 * scale:
             return False
-    return True
+    return used > 0
 
 
 def is_zero(expr: sp.Expr) -> tuple[bool, str]:

@@ -1,0 +1,30 @@
+"""Answer checking: mark answers files against the results tutgen derives for a spec.
+
+``tutgen check SPEC ANSWERS...`` derives the spec once (:func:`load_reference`), reads each answers
+file (:mod:`tutgen.check.answers`), compares it entry by entry (:mod:`tutgen.check.compare`) and
+reports (:mod:`tutgen.check.report`). The answers format and the comparison rules are documented in
+docs/check.md.
+"""
+
+from __future__ import annotations
+
+from tutgen.check.answers import AnswerSheet, Tolerance, read_answers
+from tutgen.check.compare import EntryResult, ItemResult, Reference, Status, check_sheet
+from tutgen.check.run import CheckRun, FileResult, check, load_reference, mark_file, mark_files
+
+__all__ = [
+    "AnswerSheet",
+    "CheckRun",
+    "EntryResult",
+    "FileResult",
+    "ItemResult",
+    "Reference",
+    "Status",
+    "Tolerance",
+    "check",
+    "check_sheet",
+    "load_reference",
+    "mark_file",
+    "mark_files",
+    "read_answers",
+]

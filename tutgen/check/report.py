@@ -1,0 +1,329 @@
+"""Reports of a check run: a table for the terminal, JSON, JUnit XML, and a per-file summary.
+
+Every function here returns text; the CLI decides where it goes. Output is deterministic (no
+timestamps, no durations, files in the order given), so reports can be compared between runs.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import shutil
+import xml.etree.ElementTree as ET
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from tutgen import __version__
+from tutgen.check.compare import EntryResult, ItemResult, Status
+from tutgen.check.run import CheckRun, FileResult
+from tutgen.errors import UsageError
+
+__all__ = [
+    "SUMMARY_FIELDS",
+    "plan_reports",
+    "render_json",
+    "render_junit",
+    "render_report",
+    "render_summary",
+    "render_table",
+    "run_to_json",
+    "summary_rows",
+    "write_reports",
+]
+
+#: Columns of the summary (CSV), one row per answers file; also the keys of each JSON summary row.
+SUMMARY_FIELDS = ("file", "student", "status", "correct", "wrong", "missing", "items", "wrong_items", "errors")
+
+_MARKS = {Status.CORRECT: "✓", Status.WRONG: "✗", Status.MISSING: "–"}
+_STYLES = {Status.CORRECT: "green", Status.WRONG: "red", Status.MISSING: "yellow"}
+
+
+# ---------------------------------------------------------------------------------------------
+# JSON
+# ---------------------------------------------------------------------------------------------
+
+
+def _entry_json(e: EntryResult) -> dict[str, Any]:
+    return {
+        "name": e.name,
+        "status": e.status.value,
+        "how": e.how,
+        "feedback": e.feedback,
+        "location": e.location,
+        "given": e.given,
+        "expected": e.expected,
+    }
+
+
+def _item_json(item: ItemResult) -> dict[str, Any]:
+    return {
+        "name": item.name,
+        "status": item.status.value,
+        "location": item.location,
+        "remarks": list(item.remarks),
+        "entries": [_entry_json(e) for e in item.entries],
+    }
+
+
+def _counts(f: FileResult) -> dict[str, int]:
+    return {s.value: f.count(s) for s in Status}
+
+
+def run_to_json(run: CheckRun) -> dict[str, Any]:
+    """The whole run as JSON-able data (the structure of ``tutgen check --format json``)."""
+    statuses = [f.status for f in run.files]
+    return {
+        "tutgen": __version__,
+        "spec": run.spec,
+        "title": run.title,
+        "summary": {
+            "files": len(run.files),
+            "pass": statuses.count("pass"),
+            "fail": statuses.count("fail"),
+            "invalid": statuses.count("invalid"),
+        },
+        "files": [
+            {
+                "answers": f.path,
+                "student": f.student,
+                "status": f.status,
+                "counts": _counts(f),
+                "errors": list(f.errors),
+                "items": [_item_json(i) for i in f.items],
+            }
+            for f in run.files
+        ],
+    }
+
+
+def render_json(run: CheckRun) -> str:
+    return json.dumps(run_to_json(run), indent=2, ensure_ascii=False) + "\n"
+
+
+# ---------------------------------------------------------------------------------------------
+# JUnit XML: a test suite per answers file, a test case per answer
+# ---------------------------------------------------------------------------------------------
+
+
+def _details(item: ItemResult) -> str:
+    lines = [f"{e.name}: {e.status.value}: {e.feedback} ({e.location})" for e in item.problems]
+    lines += [f"remark: {r}" for r in item.remarks]
+    return "\n".join(lines)
+
+
+def _line_of(location: str) -> str | None:
+    parts = location.rsplit(":", 2)
+    return parts[1] if len(parts) == 3 and parts[1].isdigit() else None
+
+
+def render_junit(run: CheckRun) -> str:
+    """JUnit XML (the widely read "Jenkins" dialect): one ``testsuite`` per answers file, one
+    ``testcase`` per answer; a wrong or missing answer is a ``failure``, an invalid file an ``error``."""
+    root = ET.Element("testsuites", name=f"tutgen check {run.spec}")
+    total = failures = errors = 0
+    for f in run.files:
+        stem = f.path.rsplit("/", 1)[-1].removesuffix(".yaml").removesuffix(".yml")
+        suite = ET.SubElement(root, "testsuite", name=f.path)
+        props = ET.SubElement(suite, "properties")
+        ET.SubElement(props, "property", name="spec", value=run.spec)
+        if f.student:
+            ET.SubElement(props, "property", name="student", value=f.student)
+        n = fails = errs = 0
+        if f.errors:
+            case = ET.SubElement(suite, "testcase", classname=stem, name="answers file", file=f.path)
+            error = ET.SubElement(case, "error", type="invalid", message=f.errors[0].split("\n")[0])
+            error.text = "\n".join(f.errors)
+            n, errs = 1, 1
+        for item in f.items:
+            attrs = {"classname": stem, "name": item.name, "file": f.path}
+            line = _line_of(item.location)
+            if line:
+                attrs["line"] = line
+            case = ET.SubElement(suite, "testcase", attrs)
+            n += 1
+            if item.status is not Status.CORRECT:
+                fails += 1
+                first = item.problems[0]
+                failure = ET.SubElement(
+                    case, "failure", type=item.status.value, message=f"{first.name}: {first.feedback}"
+                )
+                failure.text = _details(item)
+            elif item.remarks:
+                out = ET.SubElement(case, "system-out")
+                out.text = "\n".join(item.remarks)
+        suite.set("tests", str(n))
+        suite.set("failures", str(fails))
+        suite.set("errors", str(errs))
+        suite.set("skipped", "0")
+        total, failures, errors = total + n, failures + fails, errors + errs
+    root.set("tests", str(total))
+    root.set("failures", str(failures))
+    root.set("errors", str(errors))
+    ET.indent(root)
+    return '<?xml version="1.0" encoding="utf-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+
+
+# ---------------------------------------------------------------------------------------------
+# Summary: one row per answers file (CSV or JSON)
+# ---------------------------------------------------------------------------------------------
+
+
+def summary_rows(run: CheckRun) -> list[dict[str, Any]]:
+    rows = []
+    for f in run.files:
+        counts = _counts(f)
+        rows.append(
+            {
+                "file": f.path,
+                "student": f.student or "",
+                "status": f.status,
+                "correct": counts["correct"],
+                "wrong": counts["wrong"],
+                "missing": counts["missing"],
+                "items": len(f.items),
+                "wrong_items": "; ".join(i.name for i in f.items if i.status is not Status.CORRECT),
+                "errors": len(f.errors),
+            }
+        )
+    return rows
+
+
+def render_summary(run: CheckRun, fmt: str) -> str:
+    """The summary as ``csv`` or ``json`` text."""
+    rows = summary_rows(run)
+    if fmt == "json":
+        return json.dumps({"spec": run.spec, "files": rows}, indent=2, ensure_ascii=False) + "\n"
+    buffer = io.StringIO()
+    writer = csv.DictWriter(buffer, fieldnames=SUMMARY_FIELDS, lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)
+    return buffer.getvalue()
+
+
+# ---------------------------------------------------------------------------------------------
+# The terminal table (rich)
+# ---------------------------------------------------------------------------------------------
+
+
+def _item_details(item: ItemResult) -> str:
+    lines = []
+    for e in item.entries:
+        if e.status is not Status.CORRECT:
+            name = "" if e.name == item.name else f"{e.name}: "
+            lines.append(f"{name}{e.feedback}  [{e.location}]")
+        elif e.how.startswith("numeric"):
+            name = "" if e.name == item.name else f"{e.name}: "
+            lines.append(f"{name}{e.how}")
+    lines += item.remarks
+    return "\n".join(lines)
+
+
+def _errors(n: int) -> str:
+    return "1 error" if n == 1 else f"{n} errors"
+
+
+def render_table(run: CheckRun, *, color: bool = False, width: int = 120) -> str:
+    """A readable report: one table of answers for a single file; one row per file for several."""
+    from rich.console import Console
+    from rich.table import Table
+    from rich.text import Text
+
+    buffer = io.StringIO()
+    console = Console(
+        file=buffer, width=width, force_terminal=color, color_system="standard" if color else None, highlight=False
+    )
+    if len(run.files) == 1:
+        f = run.files[0]
+        if f.errors:
+            console.print(Text(f"{f.path}: invalid answers file ({_errors(len(f.errors))}, listed on stderr)"))
+            return buffer.getvalue()
+        who = f" ({f.student})" if f.student else ""
+        table = Table(title=Text(f"{f.path}{who}: answers to {run.spec}"), title_justify="left")
+        table.add_column("", no_wrap=True)
+        table.add_column("answer", overflow="fold")
+        table.add_column("details", overflow="fold")
+        for item in f.items:
+            mark = Text(_MARKS[item.status] + " " + item.status.value, style=_STYLES[item.status])
+            table.add_row(mark, Text(item.name), Text(_item_details(item)))
+        console.print(table)
+        c = _counts(f)
+        console.print(f"{c['correct']} correct, {c['wrong']} wrong, {c['missing']} missing")
+        return buffer.getvalue()
+    table = Table(title=Text(f"answers to {run.spec}"), title_justify="left")
+    for name in ("file", "student", "result", "correct", "wrong", "missing", "not correct"):
+        table.add_column(name, overflow="fold", justify="right" if name in ("correct", "wrong", "missing") else "left")
+    for f in run.files:
+        style = {"pass": "green", "fail": "red", "invalid": "magenta"}[f.status]
+        c = _counts(f)
+        not_correct = "; ".join(i.name for i in f.items if i.status is not Status.CORRECT)
+        if f.errors:
+            not_correct = f"invalid file: {_errors(len(f.errors))} (on stderr)"
+        table.add_row(
+            Text(f.path),
+            Text(f.student or ""),
+            Text(f.status, style=style),
+            str(c["correct"]),
+            str(c["wrong"]),
+            str(c["missing"]),
+            Text(not_correct),
+        )
+    console.print(table)
+    statuses = [f.status for f in run.files]
+    console.print(
+        f"{len(run.files)} files: {statuses.count('pass')} pass, {statuses.count('fail')} fail, "
+        f"{statuses.count('invalid')} invalid"
+    )
+    return buffer.getvalue()
+
+
+# ---------------------------------------------------------------------------------------------
+# Report files
+# ---------------------------------------------------------------------------------------------
+
+#: Summary formats by file extension.
+SUMMARY_FORMATS = {".csv": "csv", ".json": "json"}
+
+
+def plan_reports(
+    spec: Path, answers: Sequence[Path], *, junit: Path | None, summary: Path | None
+) -> list[tuple[Path, str]]:
+    """The report files to write, as (path, kind); checked before any marking is done.
+
+    Raises UsageError for a summary that is neither .csv nor .json, two reports onto one file, or a
+    report that would overwrite the spec or an answers file. Other existing files are replaced.
+    """
+    targets: list[tuple[Path, str]] = []
+    if junit is not None:
+        targets.append((junit, "junit"))
+    if summary is not None:
+        kind = SUMMARY_FORMATS.get(summary.suffix.lower())
+        if kind is None:
+            raise UsageError(f"--summary {summary}: the file name must end in .csv or .json")
+        targets.append((summary, kind))
+    inputs = {p.resolve() for p in (spec, *answers)}
+    for path, _ in targets:
+        if path.resolve() in inputs:
+            raise UsageError(f"refusing to overwrite the input file {path} with a report; choose another name")
+        if path.is_dir():
+            raise UsageError(f"{path} is a directory; give a file name for the report")
+    if len(targets) == 2 and targets[0][0].resolve() == targets[1][0].resolve():
+        raise UsageError("--junit and --summary name the same file")
+    return targets
+
+
+def write_reports(run: CheckRun, targets: list[tuple[Path, str]]) -> None:
+    """Write each planned report file (through a temporary file and a rename)."""
+    from tutgen.api import write_outputs
+
+    texts = [render_junit(run) if kind == "junit" else render_summary(run, kind) for _, kind in targets]
+    write_outputs([path for path, _ in targets], texts)
+
+
+def render_report(run: CheckRun, fmt: str, *, color: bool = False) -> str:
+    """The report for stdout: ``table`` or ``json``."""
+    if fmt == "json":
+        return render_json(run)
+    width = shutil.get_terminal_size((120, 24)).columns if color else 120
+    return render_table(run, color=color, width=width)
