@@ -48,6 +48,8 @@ pytestmark = pytest.mark.skipif(not ANSWERS.exists(), reason=f"the seed answer k
 
 @cache
 def problems() -> dict[int, dict[str, Any]]:
+    if not ANSWERS.exists():  # collected anyway; every test here is skipped
+        return {}
     data = yaml.safe_load(ANSWERS.read_text(encoding="utf-8"))
     return {int(p["id"]): p for p in data["problems"]}
 
@@ -136,7 +138,7 @@ def numeric_answer(pid: int, key: str) -> Any:
 def numeric_cases() -> list[Any]:
     out = []
     for pid in (1, 2):
-        for key, spec in problems()[pid]["answers"].items():
+        for key, spec in problems().get(pid, {"answers": {}})["answers"].items():
             if isinstance(spec, dict) and "value" in spec:
                 out.append(pytest.param(pid, key, spec, id=f"p{pid}-{key}"))
     return out
@@ -221,7 +223,7 @@ def derived_value(pid: int, key: str, sub: Any = None) -> Any:
 def expression_cases() -> list[Any]:
     out = []
     for pid in range(3, 11):
-        for key, spec in problems()[pid]["answers"].items():
+        for key, spec in problems().get(pid, {"answers": {}})["answers"].items():
             if key == "equations_of_motion":
                 for eq in spec:
                     out.append(pytest.param(pid, key, eq["coordinate"], eq, id=f"p{pid}-eom-{eq['coordinate']}"))

@@ -42,37 +42,62 @@ def solve_specs(paths: list[Path], fmt: str) -> list[str]:
     return [render(derive(system), fmt) for system in systems]
 
 
-def plan_outputs(specs: list[Path], output: Path, fmt: str, *, force: bool) -> list[Path]:
-    """Where each result goes; refuse to overwrite a spec, or an existing file without --force."""
+def plan_outputs(specs: list[Path], output: str | Path, fmt: str, *, force: bool) -> list[Path]:
+    """Where each result goes; refuse to overwrite a spec, or an existing file without --force.
+
+    ``output`` is a directory when there are several specs, when it is an existing directory, or
+    when it ends with a path separator (``-o out/``); otherwise it is the file to write.
+    """
     ext = EXTENSIONS[fmt]
-    if len(specs) > 1 or output.is_dir() or str(output).endswith(os.sep):
-        if output.exists() and not output.is_dir():
-            raise UsageError(f"-o {output}: several specs need a directory, and this is a file")
-        targets = [output / (spec.stem + ext) for spec in specs]
+    text = str(output)
+    out = Path(output)
+    if len(specs) > 1 or out.is_dir() or text.endswith(("/", os.sep)):
+        if out.exists() and not out.is_dir():
+            raise UsageError(f"-o {text}: several specs need a directory, and this is a file")
+        targets = [out / (spec.stem + ext) for spec in specs]
         stems = [t.name for t in targets]
         dupes = sorted({s for s in stems if stems.count(s) > 1})
         if dupes:
             raise UsageError(f"two specs would write the same file: {', '.join(dupes)}; solve them separately")
     else:
-        targets = [output]
-    inputs = {spec.resolve() for spec in specs}
+        targets = [out]
     for target in targets:
-        if target.resolve() in inputs:
+        if _is_spec(target, specs):
             raise UsageError(f"refusing to overwrite the spec {target} with the solution; choose another -o")
+        if target.is_dir():
+            raise UsageError(f"-o {target}: this is a directory; add a trailing '/' to write into it")
         if target.exists() and not force:
             raise UsageError(f"{target} exists; add --force to overwrite it")
     return targets
 
 
+def _is_spec(target: Path, specs: list[Path]) -> bool:
+    """Whether ``target`` is one of the input files (by path, through symlinks, or as a hard link)."""
+    if target.resolve() in {spec.resolve() for spec in specs}:
+        return True
+    if not target.exists():
+        return False
+    return any(spec.exists() and os.path.samefile(target, spec) for spec in specs)
+
+
 def write_outputs(targets: list[Path], texts: list[str]) -> None:
     """Write each text through a temporary file and a rename, so no file is ever half-written."""
+    umask = os.umask(0)
+    os.umask(umask)
     for target, text in zip(targets, texts, strict=True):
-        target.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+        try:
+            target.parent.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+        except OSError as err:
+            raise UsageError(f"cannot write {target}: {err.strerror or err}") from None
         try:
             with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
+                # mkstemp makes the file readable by its owner only; give it the usual permissions
+                os.fchmod(fh.fileno(), 0o666 & ~umask)
                 fh.write(text)
             os.replace(tmp, target)
-        except BaseException:
+        except BaseException as err:
             Path(tmp).unlink(missing_ok=True)
+            if isinstance(err, OSError):
+                raise UsageError(f"cannot write {target}: {err.strerror or err}") from None
             raise

@@ -3,18 +3,22 @@
 from __future__ import annotations
 
 import functools
+import os
 import sys
 from collections.abc import Callable
 from typing import ParamSpec, TypeVar
 
 import typer
 
-from tutgen.errors import EXIT_INTERNAL, TutgenError
+from tutgen.errors import EXIT_INTERNAL, TutgenError, UsageError
 
 P = ParamSpec("P")
 R = TypeVar("R")
 
 _state = {"debug": False}
+
+#: What a shell reports for a program stopped by SIGPIPE (128 + 13).
+EXIT_BROKEN_PIPE = 141
 
 
 def set_debug(on: bool) -> None:
@@ -33,8 +37,17 @@ def handle_errors(func: Callable[P, R]) -> Callable[P, R]:
         except TutgenError as err:
             if _state["debug"]:
                 raise
-            typer.echo(str(err), err=True)
+            # a spec error names its file and place itself; a usage error needs the word "error"
+            typer.echo(f"error: {err}" if isinstance(err, UsageError) else str(err), err=True)
             raise typer.Exit(err.exit_code) from None
+        except BrokenPipeError:
+            # the reader went away (`tutgen solve spec.yaml | head`): not an error of ours; stop quietly,
+            # and keep Python from complaining again when it flushes stdout at exit
+            try:
+                os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+            except (OSError, ValueError):  # pragma: no cover - stdout is not a real file
+                pass
+            raise typer.Exit(EXIT_BROKEN_PIPE) from None
         except RecursionError:
             if _state["debug"]:
                 raise

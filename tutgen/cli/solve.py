@@ -21,11 +21,14 @@ def solve(
     specs: Annotated[list[Path], typer.Argument(help="One or more spec files (YAML).", show_default=False)],
     format: Annotated[Format, typer.Option("--format", "-f", help="Output format.")] = Format.md,
     output: Annotated[
-        Path | None,
+        str | None,
         typer.Option(
             "--output",
             "-o",
-            help="Output file (one spec) or directory (several specs, or an existing directory); default stdout.",
+            metavar="PATH",
+            help="Output file (one spec) or directory (several specs, an existing directory, or a path "
+            "ending in '/'); default stdout.",
+            show_default=False,
         ),
     ] = None,
     force: Annotated[bool, typer.Option("--force", help="Overwrite existing output files.")] = False,
@@ -36,14 +39,14 @@ def solve(
     Existing files are overwritten only with --force, and never a spec itself.
     """
     from tutgen.api import plan_outputs, solve_specs, write_outputs
+    from tutgen.errors import UsageError
 
+    if output is None and len(specs) > 1:
+        raise UsageError("several specs need an output directory: add -o DIR")
+    if output is not None:
+        plan_outputs(specs, output, format.value, force=force)  # refuse early, before the slow part
     texts = solve_specs(specs, format.value)
     if output is None:
-        if len(texts) > 1:
-            from tutgen.errors import UsageError
-
-            raise UsageError("several specs need an output directory: add -o DIR")
         stdout_write(texts[0])
         return
-    targets = plan_outputs(specs, output, format.value, force=force)
-    write_outputs(targets, texts)
+    write_outputs(plan_outputs(specs, output, format.value, force=force), texts)

@@ -13,7 +13,7 @@ import re
 from collections.abc import Mapping
 from functools import cache
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import sympy as sp
 from pydantic import ValidationError
@@ -55,18 +55,94 @@ def load_system_text(text: str, path: str = "<spec>") -> System:
     return validate_spec(data, smap)
 
 
+#: Sections that hold named objects, and what one of their entries is called in a message.
+NAMED_SECTIONS = {
+    "parameters": "parameter",
+    "coordinates": "coordinate",
+    "bodies": "body",
+    "joints": "joint",
+    "springs": "spring",
+    "dampers": "damper",
+    "loads": "load",
+    "generalized_forces": "generalized force on",
+}
+#: Sections every expression or cross-reference depends on: when one of them has the wrong shape as a
+#: whole, checking the rest would only report consequences of that one mistake.
+_FOUNDATIONS = frozenset({"parameters", "coordinates", "bodies"})
+#: Keys whose value is the name of something declared elsewhere.
+_NAME_KEYS = frozenset({"parent", "child", "coordinate", "body", "reaction_body"})
+#: Keys of earlier drafts of the format, and what they are called now.
+_RENAMED_KEYS = {"on": "body", "reaction_on": "reaction_body"}
+
+
 def validate_spec(data: Any, smap: SourceMap) -> System:
-    """Check a loaded spec and build the model; raise SpecErrors listing every problem."""
+    """Check a loaded spec and build the model; raise SpecErrors listing every problem.
+
+    Shape errors do not stop the other checks: an object (a body, a joint, ...) whose shape is wrong
+    is reported, set aside, and still counts as declared, so that the rest of the spec is checked
+    without a second report of the same mistake.
+    """
     if not isinstance(data, dict):
         found = "an empty file" if data is None else S._describe(data)
         raise SpecErrors(
-            [SpecError(smap.location(()), f"expected a mapping with a 'title' and the problem, found {found}")]
+            [
+                SpecError(
+                    smap.location(()),
+                    f"expected a mapping of spec keys (title, parameters, bodies, ...), found {found}",
+                )
+            ]
         )
+    errors: list[SpecError] = []
+    dropped: set[KeyPath] = set()
+    work: dict[str, Any] = data
+    for _ in range(3):
+        try:
+            doc = S.SpecDoc.model_validate(work)
+            break
+        except ValidationError as exc:
+            problems = _translate(exc, work, smap)
+            errors += [p.error for p in problems]
+            units = {_unit(p.path) for p in problems} - {()}
+            dropped |= units
+            work = _prune(work, units)
+    else:  # pragma: no cover - pruning removes every part pydantic complained about
+        raise SpecErrors(errors)
+    if errors and any(len(u) == 1 and u[0] in _FOUNDATIONS for u in dropped):
+        raise SpecErrors(errors)
+    builder = _Builder(doc, data, smap, dropped)
     try:
-        doc = S.SpecDoc.model_validate(data)
-    except ValidationError as exc:
-        raise SpecErrors(_translate(exc, data, smap)) from None
-    return _Builder(doc, data, smap).build()
+        system = builder.build()
+    except SpecErrors as exc:
+        raise SpecErrors(errors + exc.errors) from None
+    if errors:
+        raise SpecErrors(errors)
+    return system
+
+
+def _unit(path: KeyPath) -> KeyPath:
+    """The part of the spec set aside for a shape error at ``path``: a named entry, or a top-level key."""
+    if not path:
+        return ()
+    if path[0] in NAMED_SECTIONS and len(path) >= 2:
+        return tuple(path[:2])
+    return tuple(path[:1])
+
+
+def _prune(data: dict[str, Any], units: set[KeyPath]) -> dict[str, Any]:
+    """A copy of ``data`` without ``units`` (top-level keys, or entries of a section)."""
+    out = dict(data)
+    for unit in units:
+        if len(unit) == 1:
+            out.pop(unit[0], None)
+    for section in {u[0] for u in units if len(u) == 2}:
+        entries = {u[1] for u in units if len(u) == 2 and u[0] == section}
+        value = out.get(section)
+        if isinstance(value, dict):
+            out[section] = {k: v for k, v in value.items() if k not in entries}
+        elif isinstance(value, list):
+            out[section] = [v for i, v in enumerate(value) if i not in entries]
+    out.setdefault("title", "")
+    return out
 
 
 # ---------------------------------------------------------------------------------------------
@@ -76,6 +152,7 @@ def validate_spec(data: Any, smap: SourceMap) -> System:
 _TYPE_WORDS = {
     "dict_type": "a mapping",
     "model_type": "a mapping",
+    "model_attributes_type": "a mapping",
     "list_type": "a list",
     "string_type": "a text",
     "int_type": "a whole number",
@@ -152,15 +229,47 @@ def _data_path(loc: tuple[Any, ...], data: Any) -> tuple[tuple[Any, ...], Any, b
     return tuple(path), node, found
 
 
-def _where(path: tuple[Any, ...]) -> str:
+def _where(path: KeyPath) -> str:
+    """A place in the spec in the reader's words: "body 'link'", "'com[2]' of body 'link'", "'gravity'"."""
     if not path:
         return "the spec"
-    parts = [str(p) if not isinstance(p, int) else f"item {p + 1}" for p in path]
-    return "'" + ".".join(parts) + "'"
+    owner = None
+    rest = tuple(path)
+    if path[0] in NAMED_SECTIONS and len(path) >= 2 and isinstance(path[1], str):
+        owner = f"{NAMED_SECTIONS[str(path[0])]} '{path[1]}'"
+        rest = tuple(path[2:])
+        if path[0] == "bodies" and len(rest) >= 2 and rest[0] == "parts":
+            owner = f"part '{rest[1]}' of body '{path[1]}'"
+            rest = rest[2:]
+    if not rest:
+        return owner or "the spec"
+    text = ""
+    for p in rest:
+        text += f"[{p + 1}]" if isinstance(p, int) else (f".{p}" if text else str(p))
+    return f"'{text}' of {owner}" if owner else f"'{text}'"
 
 
-def _translate(exc: ValidationError, data: Any, smap: SourceMap) -> list[SpecError]:
-    errors: list[SpecError] = []
+class _Problem(NamedTuple):
+    """A located error and the data path it is about (to set that part of the spec aside)."""
+
+    path: KeyPath
+    error: SpecError
+
+
+def _translate(exc: ValidationError, data: Any, smap: SourceMap) -> list[_Problem]:
+    """pydantic's errors as located messages in the spec's words, one per mistake.
+
+    The alternatives of a union that all failed at one place become one message ("must be one of:
+    x, y, z or a vector ..."); a required key that is missing because it was misspelt is reported
+    once, as the misspelt key.
+    """
+    problems: list[_Problem] = []
+    suggested: set[tuple[KeyPath, str]] = set()  # (mapping, key) offered as "did you mean"
+    missing: list[tuple[KeyPath, str]] = []
+    # value problems by place: (what was expected, what was found, hint, location)
+    values: dict[KeyPath, list[tuple[str, str, str | None, Location]]] = {}
+    literal_only: set[KeyPath] = set()  # places where a choice of names failed
+    structured: set[KeyPath] = set()  # places where anything else failed
     for err in exc.errors():
         loc = tuple(err["loc"])
         kind = err["type"]
@@ -169,78 +278,109 @@ def _translate(exc: ValidationError, data: Any, smap: SourceMap) -> list[SpecErr
             key = str(loc[-1])
             allowed = _allowed_keys(path[:-1], data)
             close = difflib.get_close_matches(key, allowed, n=1)
-            errors.append(
-                SpecError(
-                    smap.key_location(path),
-                    f"unknown key '{key}' in {_where(path[:-1])}; expected one of: " + ", ".join(allowed),
-                    f"did you mean '{close[0]}'?" if close else None,
+            if not close and _RENAMED_KEYS.get(key) in allowed:
+                close = [_RENAMED_KEYS[key]]
+            if close:
+                suggested.add((path[:-1], close[0]))
+            problems.append(
+                _Problem(
+                    path,
+                    SpecError(
+                        smap.key_location(path),
+                        f"unknown key '{key}' in {_where(path[:-1])}; expected one of: " + ", ".join(allowed),
+                        f"did you mean '{close[0]}'?" if close else None,
+                    ),
                 )
             )
         elif kind == "missing":
-            errors.append(
-                SpecError(
-                    smap.key_location(path) if path else smap.location(()),
-                    f"missing required key '{loc[-1]}' in {_where(path)}",
-                )
-            )
-        elif kind == "literal_error":
-            expected = err.get("ctx", {}).get("expected", "")
-            choices = [c.strip(" '") for c in expected.replace(" or ", ", ").split(",")]
-            close = difflib.get_close_matches(str(value), choices, n=1)
-            errors.append(
-                SpecError(
-                    smap.location(path),
-                    f"expected one of: {', '.join(choices)} in {_where(path)}; found {S._describe(value)}",
-                    f"did you mean '{close[0]}'?" if close else None,
-                )
-            )
+            missing.append((path, str(loc[-1])))
         elif kind == "union_tag_invalid":
             tag = err["ctx"]["tag"]
-            choices = list(S.SHAPES)
-            close = difflib.get_close_matches(str(tag), choices, n=1)
-            errors.append(
-                SpecError(
-                    smap.location((*path, "shape")),
-                    f"unknown shape '{tag}' in {_where(path)}; expected one of: " + ", ".join(choices),
-                    f"did you mean '{close[0]}'?" if close else None,
+            close = difflib.get_close_matches(str(tag), S.SHAPES, n=1)
+            problems.append(
+                _Problem(
+                    path,
+                    SpecError(
+                        smap.location((*path, "shape")),
+                        f"unknown shape '{tag}' for {_where(path)}; expected one of: " + ", ".join(S.SHAPES),
+                        f"did you mean '{close[0]}'?" if close else None,
+                    ),
                 )
             )
         elif kind == "union_tag_not_found":
-            errors.append(
-                SpecError(
-                    smap.location(path),
-                    f"missing required key 'shape' in {_where(path)}; expected one of: " + ", ".join(S.SHAPES),
-                )
-            )
-        elif kind.startswith("tutgen_"):
-            errors.append(SpecError(smap.location(path), f"{err['msg']} in {_where(path)}"))
-        elif kind in ("too_short", "too_long"):
-            errors.append(
-                SpecError(
-                    smap.location(path), f"expected {_length_words(err)} in {_where(path)}; found {S._describe(value)}"
-                )
-            )
+            missing.append((path, "shape"))
+        elif kind == "tutgen_names" and isinstance(value, list):
+            for i, item in enumerate(value):
+                if not isinstance(item, str):
+                    problems.append(
+                        _Problem(
+                            (*path, i),
+                            SpecError(
+                                smap.location((*path, i)),
+                                f"{_where((*path, i))} must be a name; found {S._describe(item)}",
+                            ),
+                        )
+                    )
         else:
-            expected = _TYPE_WORDS.get(kind, err["msg"].removeprefix("Input should be ").rstrip("."))
-            errors.append(
-                SpecError(smap.location(path), f"expected {expected} in {_where(path)}; found {S._describe(value)}")
-            )
-    # a union reports one error per alternative; keep the first per place
-    seen: set[tuple[Location, str]] = set()
-    unique = []
-    for e in errors:
-        key = (e.location, e.message.split(";")[0])
-        if key not in seen:
-            seen.add(key)
-            unique.append(e)
-    return unique
+            expected, hint = _expected(err, path, value)
+            if kind == "literal_error":
+                literal_only.add(path)
+            else:
+                structured.add(path)
+            values.setdefault(path, []).append((expected, S._describe(value), hint, smap.location(path)))
+    for path, key in missing:
+        if (path, key) in suggested:
+            continue  # the misspelt key is reported, with this one as its suggestion
+        text = f"missing required key '{key}' in {_where(path)}"
+        if key == "shape":
+            text += "; expected one of: " + ", ".join(S.SHAPES)
+        problems.append(_Problem(path, SpecError(smap.key_location(path) if path else smap.location(()), text)))
+    for path, found in values.items():
+        if path in literal_only - structured and any(q[: len(path)] == path and q != path for q in values):
+            # `axis: [true, 0, 0]` fails as a name and, deeper, as a vector: the vector was meant
+            continue
+        expected = " or ".join(dict.fromkeys(e for e, _, _, _ in found))
+        hint = next((h for _, _, h, _ in found if h), None)
+        if path == ("tutgen",):
+            message = f"unsupported spec format version: 'tutgen' must be {expected}; found {found[0][1]}"
+            hint = hint or f"this version of tutgen reads format {S.SPEC_FORMAT_VERSION}"
+        else:
+            message = f"{_where(path)} must be {expected}; found {found[0][1]}"
+        problems.append(_Problem(path, SpecError(found[0][3], message, hint)))
+    return problems
 
 
-def _length_words(err: Any) -> str:
-    ctx = err.get("ctx", {})
-    if "min_length" in ctx and err["type"] == "too_short":
-        return f"at least {ctx['min_length']} items"
-    return f"at most {ctx.get('max_length')} items"
+def _expected(err: Any, path: KeyPath, value: Any) -> tuple[str, str | None]:
+    """What a value error expected, in words, and a "did you mean" hint if one applies."""
+    kind = err["type"]
+    if kind == "literal_error":
+        expected = err.get("ctx", {}).get("expected", "")
+        choices = [c.strip(" '") for c in expected.replace(" or ", ", ").split(",")]
+        close = difflib.get_close_matches(str(value), choices, n=1) if isinstance(value, str) else []
+        words = choices[0] if len(choices) == 1 else "one of: " + ", ".join(choices)
+        return words, (f"did you mean '{close[0]}'?" if close else None)
+    if kind == "tutgen_text" and path and path[-1] in _NAME_KEYS:
+        return "a name", None
+    if kind.startswith("tutgen_"):
+        message = str(err["msg"])
+        head = message.split(", found ", 1)[0]
+        return head.removeprefix("expected "), None
+    if kind in ("too_short", "too_long"):
+        ctx = err.get("ctx", {})
+        if path and path[-1] == "between":
+            return "two attachment points [A, B]", None
+        if kind == "too_short":  # pragma: no cover - only `between` has a length today
+            return f"a list of at least {ctx.get('min_length')} items", None
+        return f"a list of at most {ctx.get('max_length')} items", None
+    if kind in ("dict_type", "model_type") and path in (("parameters",), ("coordinates",)):
+        return "a list of names or a mapping", None
+    if kind in ("dict_type", "model_type") and path == ("gravity",):
+        return "a vector [x, y, z] or a mapping with `g` and `direction`", None
+    if kind == "list_type" and path and path[-1] == "between":
+        return "a list of two attachment points [A, B]", None
+    if kind == "list_type" and path and path[-1] == "orientation":
+        return "a list of rotations", "write e.g. orientation: [{axis: z, angle: theta}]"
+    return _TYPE_WORDS.get(kind, str(err["msg"]).removeprefix("Input should be ").rstrip(".")), None
 
 
 # ---------------------------------------------------------------------------------------------
@@ -251,7 +391,9 @@ AXES = {"x": (1, 0, 0), "y": (0, 1, 0), "z": (0, 0, 1)}
 
 
 class _Builder:
-    def __init__(self, doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap) -> None:
+    def __init__(
+        self, doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped: set[KeyPath] | None = None
+    ) -> None:
         self.doc = doc
         self.data = data
         self.smap = smap
@@ -259,34 +401,86 @@ class _Builder:
         self.params: dict[str, sp.Symbol] = {}
         self.coords: dict[str, Coordinate] = {}
         self.dims: dict[sp.Symbol, Dimension | None] = {}
+        # parts of the spec set aside for shape errors (already reported): their names still count
+        # as declared, so that nothing else is reported because of them
+        self.dropped: set[KeyPath] = set(dropped or ())
+        self.dropped_keys = {str(u[0]) for u in self.dropped if len(u) == 1}
+        self.body_names: set[str] = set()
+        self.placed: dict[str, str] = {}  # body -> the joint that places it
+
+    def dropped_names(self, section: str) -> list[str]:
+        """Names of the entries of ``section`` set aside for shape errors."""
+        return sorted(str(u[1]) for u in self.dropped if len(u) == 2 and u[0] == section and isinstance(u[1], str))
 
     # -- helpers -------------------------------------------------------------------------
     def error(self, path: KeyPath, message: str, hint: str | None = None, key: bool = False) -> None:
         loc = self.smap.key_location(path) if key else self.smap.location(path)
         self.errors.append(SpecError(loc, message, hint))
 
+    def name_path(self, section: str, name: str) -> KeyPath:
+        """Where a declared name was written: its key, or its item in a list shorthand ``[m1, m2]``."""
+        written = self.data.get(section)
+        if isinstance(written, list) and name in written:
+            return (section, written.index(name))
+        return (section, name)
+
+    def check_listed_twice(self, section: str) -> None:
+        """A list shorthand ``[m, l, m]`` would silently merge the two ``m``: report the second one."""
+        written = self.data.get(section)
+        if not isinstance(written, list):
+            return
+        first: dict[str, int] = {}
+        for i, name in enumerate(written):
+            if not isinstance(name, str):
+                continue
+            if name in first:
+                where = self.smap.location((section, first[name]))
+                self.error(
+                    (section, i),
+                    f"{NAMED_SECTIONS[section]} '{name}' is listed twice in '{section}' "
+                    f"(first at line {where.line}, column {where.col})",
+                    "a name may appear once; remove one of them",
+                    key=True,
+                )
+            else:
+                first[name] = i
+
     def _check_name(self, path: KeyPath, name: str, what: str) -> bool:
-        if not name.isidentifier() or keyword.iskeyword(name) or not name.isascii():
+        """Report a name that cannot be used; False if it must not even be declared (it would hide a function).
+
+        A bad name is reported once, here: the object is still declared under it, so that whatever
+        refers to it is not reported again as referring to something unknown.
+        """
+        if not name.isidentifier() or not name.isascii():
             self.error(
                 path,
-                f"{what} name '{name}' is not a valid name; use letters, digits and _, "
+                f"{what} name '{name}' is not a valid name; expected letters, digits and _, "
                 "starting with a letter (e.g. m1, theta_2)",
                 key=True,
             )
-            return False
-        if name in RESERVED_NAMES or name.endswith(("_dot", "_ddot")):
+            return True
+        if keyword.iskeyword(name):
             self.error(
                 path,
-                f"{what} name '{name}' is reserved"
-                + (" (a function or constant)" if name in FUNCTIONS or name == "pi" else "")
-                + (
-                    "; the names NAME_dot and NAME_ddot are the velocity and acceleration of a coordinate"
-                    if name.endswith(("_dot", "_ddot"))
-                    else ""
-                ),
+                f"{what} name '{name}' is a reserved word; choose another name (e.g. '{name}1')",
                 key=True,
             )
+            return True
+        if name in FUNCTIONS or name in ("pi", "t"):
+            kind = "a function" if name in FUNCTIONS else "the constant pi" if name == "pi" else "time"
+            self.error(path, f"{what} name '{name}' is reserved: it is {kind} in expressions", key=True)
             return False
+        if name == GROUND:
+            self.error(path, f"{what} name '{name}' is reserved: it is the fixed world frame", key=True)
+            return True
+        if name.endswith(("_dot", "_ddot")):
+            self.error(
+                path,
+                f"{what} name '{name}' is reserved: NAME_dot and NAME_ddot are the velocity and acceleration "
+                "of a coordinate",
+                key=True,
+            )
+            return True
         return True
 
     def symbols(self, *, coords: bool = False, rates: bool = False, accel: bool = False) -> dict[str, sp.Expr]:
@@ -308,7 +502,15 @@ class _Builder:
         dimension: str | None = None,
         what: str = "",
     ) -> sp.Expr | None:
-        """Parse one expression (or quantity) at ``path``; record an error and return None if bad."""
+        """Parse one expression (or quantity) at ``path``; record an error and return None if bad.
+
+        ``what`` names the value in a message when its dimension alone does not ("gravity").
+        """
+        expected = ""
+        if dimension is not None:
+            expected = _expected_dimension(dimension)
+            if what and what.split(" ", 1)[-1] != dimension.replace("_", " "):
+                expected += f" for {what}"
         if isinstance(value, str):
             try:
                 quantity = parse_quantity(value)
@@ -317,33 +519,46 @@ class _Builder:
                 return None
             if quantity is not None:
                 if dimension is not None and quantity.dimension != DIMENSIONS[dimension]:
-                    self.error(
-                        path,
-                        f"expected a {dimension.replace('_', ' ')} ({DIMENSIONS[dimension]})"
-                        f"{' for ' + what if what else ''}, found '{value}' ({quantity.dimension})",
-                    )
+                    found_words = _found_dimension(quantity.dimension)
+                    self.error(path, f"expected {expected}, found '{value}', which is {found_words}")
                     return None
                 return quantity.value
         try:
             result = parse_expression(value, names)
         except ExprError as exc:
-            hint = exc.hint
+            hint = self._name_hint(exc, names) or exc.hint
             self.errors.append(SpecError(self.smap.expr_location(path, exc.offset), exc.message, hint))
             return None
         if dimension is not None:
             try:
                 found = dimension_of(result, self.dims)
             except DimensionMismatch as exc:
-                self.error(path, str(exc.args[0]) if exc.args else "inconsistent units")
+                self.error(path, f"the units in '{value}' do not agree: {exc.args[0] if exc.args else exc}")
                 return None
             if found is not None and found != DIMENSIONS[dimension] and not result.is_number:
-                self.error(
-                    path,
-                    f"expected a {dimension.replace('_', ' ')} ({DIMENSIONS[dimension]})"
-                    f"{' for ' + what if what else ''}, found '{value}' with the units {found}",
-                )
+                self.error(path, f"expected {expected}, found '{value}', which is {_found_dimension(found)}")
                 return None
         return result
+
+    def _name_hint(self, exc: ExprError, names: Mapping[str, sp.Expr]) -> str | None:
+        """Why a declared name is unknown here: a coordinate in a constant, a velocity outside T and forces."""
+        match = re.fullmatch(r"unknown name '([A-Za-z_][A-Za-z0-9_]*)'", exc.message)
+        if match is None:
+            return None
+        name = match[1]
+        base = re.sub(r"_d?dot$", "", name)
+        if name in self.coords:
+            return f"'{name}' is a coordinate; this value must be constant (parameters and numbers only)"
+        if name in self.params:
+            return f"'{name}' is a parameter; this value must be given by numbers only"
+        if base != name and base in self.coords:
+            if name.endswith("_ddot"):
+                return f"'{name}' is the acceleration of coordinate '{base}'; no value in a spec may depend on it"
+            return (
+                f"'{name}' is the velocity of coordinate '{base}'; velocities may appear only in "
+                "`energy.kinetic`, `loads` and `generalized_forces`"
+            )
+        return None
 
     def vector(
         self, path: KeyPath, values: list[Any] | None, names: Mapping[str, sp.Expr], dimension: str | None = None
@@ -364,7 +579,7 @@ class _Builder:
             return None
         norm2 = sp.expand(sum((v**2 for v in vec), sp.Integer(0)))
         if norm2 == 0:
-            self.error(path, "expected a direction, found the zero vector")
+            self.error(path, f"{_where(path)} must be a direction; found the zero vector")
             return None
         if norm2.free_symbols:
             self.error(path, "expected a constant direction (numbers), found one that depends on symbols")
@@ -390,12 +605,12 @@ class _Builder:
         self.build_coordinates()
         gravity = self.build_gravity()
         bodies = self.build_bodies()
-        joints = self.build_joints({b.name for b in bodies})
-        springs, dampers = self.build_elements({b.name for b in bodies})
-        loads = self.build_loads({b.name for b in bodies})
+        joints = self.build_joints(self.body_names)
+        springs, dampers = self.build_elements(self.body_names)
+        loads = self.build_loads(self.body_names)
         gforces = self.build_generalized_forces()
         kinetic, potential = self.build_energy()
-        self.check_explicit_placement(bodies, joints)
+        self.check_explicit_placement()
         if self.errors:
             raise SpecErrors(self.errors)
         ask = self.build_ask(bool(self.coords))
@@ -420,13 +635,18 @@ class _Builder:
 
     def build_parameters(self) -> None:
         self.parameters: list[Parameter] = []
+        self.check_listed_twice("parameters")
         # parameters that appear in forces are plain real numbers; the rest (masses, lengths,
         # stiffnesses, g) are positive, which lets sqrt(l**2) become l
         force_text = " ".join(str(v) for v in self.doc.generalized_forces.values())
         for load in self.doc.loads.values():
             force_text += " " + " ".join(str(v) for v in (load.force or []) + (load.torque or []))
+        for name in self.dropped_names("parameters"):
+            if name.isidentifier() and name not in FUNCTIONS and name != "pi":
+                self.params[name] = sp.Symbol(name, real=True)
+                self.dims[self.params[name]] = None
         for name, spec in self.doc.parameters.items():
-            path = ("parameters", name)
+            path = self.name_path("parameters", name)
             if not self._check_name(path, name, "parameter"):
                 continue
             is_force = _mentions(force_text, name)
@@ -434,6 +654,9 @@ class _Builder:
             value: sp.Expr | None = None
             unit: str | None = None
             dim: Dimension | None = DIMENSIONS[spec.dimension] if spec.dimension else None
+            # declared before its value is checked: a bad value is one error, not one per use
+            self.params[name] = symbol
+            self.dims[symbol] = dim
             if spec.value is not None:
                 vpath = (*path, "value") if self.smap.has((*path, "value")) else path
                 if isinstance(spec.value, str):
@@ -443,50 +666,66 @@ class _Builder:
                         self.errors.append(SpecError(self.smap.expr_location(vpath, exc.offset), exc.message, exc.hint))
                         continue
                     if quantity is not None:
-                        if dim is not None and quantity.dimension != dim:
+                        if spec.dimension is not None and dim is not None and quantity.dimension != dim:
                             self.error(
                                 vpath,
-                                f"parameter '{name}' is declared as a {spec.dimension} ({dim}), "
-                                f"but its value '{spec.value}' is in {quantity.dimension}",
+                                f"parameter '{name}' is declared as {_expected_dimension(spec.dimension)}, "
+                                f"but its value '{spec.value}' is {_found_dimension(quantity.dimension)}",
                             )
                             continue
                         value, unit, dim = quantity.value, quantity.unit, quantity.dimension
+                        self.dims[symbol] = dim
                 if value is None:
                     value = self.expr(vpath, spec.value, {})
                     if value is None:
                         continue
             latex = spec.latex if spec.latex is not None else sp.latex(symbol)
-            self.params[name] = symbol
-            self.dims[symbol] = dim
             self.parameters.append(
                 Parameter(name, symbol, value, latex, spec.description, unit, self.smap.key_location(path))
             )
 
     def build_coordinates(self) -> None:
-        if len(self.doc.coordinates) > MAX_COORDINATES:
+        self.check_listed_twice("coordinates")
+        names = [*self.doc.coordinates, *self.dropped_names("coordinates")]
+        if len(names) > MAX_COORDINATES:
+            extra = names[MAX_COORDINATES]
             self.error(
-                ("coordinates",),
-                f"at most {MAX_COORDINATES} coordinates are supported, found {len(self.doc.coordinates)}",
+                self.name_path("coordinates", extra),
+                f"expected at most {MAX_COORDINATES} coordinates, found {len(names)} "
+                f"('{extra}' is number {MAX_COORDINATES + 1})",
+                "tutgen derives symbolic equations; split the problem, or fix some coordinates",
+                key=True,
             )
-            return
+        for name in self.dropped_names("coordinates"):
+            if name.isidentifier() and name not in FUNCTIONS and name != "pi":
+                self.coords[name] = self._coordinate(name, None, None, None)
         for name, spec in self.doc.coordinates.items():
-            path = ("coordinates", name)
+            path = self.name_path("coordinates", name)
             if not self._check_name(path, name, "coordinate"):
                 continue
             if name in self.params:
+                # declared anyway (as a coordinate), so that its uses are not reported too
                 self.error(path, f"'{name}' is declared both as a parameter and as a coordinate", key=True)
-                continue
-            q = sp.Symbol(name, real=True)
-            qd = sp.Symbol(f"{name}_dot", real=True)
-            qdd = sp.Symbol(f"{name}_ddot", real=True)
-            latex = spec.latex if spec.latex is not None else sp.latex(q)
-            self.coords[name] = Coordinate(
-                name, q, qd, qdd, latex, spec.description, spec.dimension, self.smap.key_location(path)
-            )
+            self.coords[name] = self._coordinate(name, spec.latex, spec.description, spec.dimension)
             if spec.dimension == "length":
-                self.dims[q] = DIMENSIONS["length"]
+                self.dims[self.coords[name].q] = DIMENSIONS["length"]
             elif spec.dimension == "angle":
-                self.dims[q] = DIMENSIONS["angle"]
+                self.dims[self.coords[name].q] = DIMENSIONS["angle"]
+
+    def _coordinate(self, name: str, latex: str | None, description: str | None, dimension: str | None) -> Coordinate:
+        q = sp.Symbol(name, real=True)
+        qd = sp.Symbol(f"{name}_dot", real=True)
+        qdd = sp.Symbol(f"{name}_ddot", real=True)
+        return Coordinate(
+            name,
+            q,
+            qd,
+            qdd,
+            latex if latex is not None else sp.latex(q),
+            description,
+            dimension,
+            self.smap.key_location(self.name_path("coordinates", name)),
+        )
 
     def build_gravity(self) -> sp.ImmutableMatrix | None:
         spec = self.doc.gravity
@@ -496,12 +735,28 @@ class _Builder:
         names = self.symbols()
         if spec.vector is not None:
             if spec.g is not None or spec.direction is not None:
-                self.error(path, "give gravity as a vector, or as `g` and `direction`, not both")
+                extra = "g" if spec.g is not None else "direction"
+                self.error(
+                    (*path, extra),
+                    f"gravity gives both `vector` and `{extra}`; expected a vector, or `g` with `direction`",
+                    key=True,
+                )
                 return None
             vpath = path if isinstance(self.data.get("gravity"), list) else (*path, "vector")
             return self.vector(vpath, spec.vector, names, "acceleration")
         if spec.g is None or spec.direction is None:
-            self.error(path, "gravity needs `g` and `direction` (e.g. {g: g, direction: -y}), or a vector")
+            found = (
+                "`g` without `direction`"
+                if spec.g is not None
+                else "`direction` without `g`"
+                if spec.direction is not None
+                else "neither"
+            )
+            self.error(
+                path,
+                f"gravity needs a `vector`, or `g` and `direction` (e.g. {{g: g, direction: -y}}); found {found}",
+                key=True,
+            )
             return None
         g = self.expr((*path, "g"), spec.g, names, "acceleration", "gravity")
         direction = self.axis((*path, "direction"), spec.direction, {})
@@ -514,10 +769,12 @@ class _Builder:
         out = []
         consts = self.symbols()
         kin_names = self.symbols(coords=True)
+        # every declared body counts as known, even one with errors, so that joints, springs and
+        # loads that refer to it are not reported as well
+        self.body_names = {*self.doc.bodies, *self.dropped_names("bodies")}
         for name, spec in self.doc.bodies.items():
             path: KeyPath = ("bodies", name)
-            if not self._check_name(path, name, "body"):
-                continue
+            self._check_name(path, name, "body")
             if name in self.params or name in self.coords:
                 self.error(
                     path,
@@ -525,13 +782,16 @@ class _Builder:
                     "; give the body another name",
                     key=True,
                 )
-                continue
             parts: list[Part] = []
             simple = spec.parts is None
             if spec.parts is not None:
                 if spec.mass is not None or spec.inertia is not None or spec.com is not None:
+                    given = ", ".join(f"`{k}`" for k in ("mass", "com", "inertia") if getattr(spec, k) is not None)
                     self.error(
-                        path, f"body '{name}' has both `parts` and `mass`/`com`/`inertia`; give one or the other"
+                        path,
+                        f"body '{name}' gives both `parts` and {given}; expected `parts` (each with its own mass) "
+                        "or `mass`/`com`/`inertia`, not both",
+                        key=True,
                     )
                     continue
                 for pname, pspec in spec.parts.items():
@@ -559,7 +819,8 @@ class _Builder:
                         )
                     )
             elif spec.inertia is not None or spec.com is not None:
-                self.error(path, f"body '{name}' gives `com` or `inertia` but no `mass`")
+                given = "`com`" if spec.com is not None else "`inertia`"
+                self.error(path, f"body '{name}' gives {given} but no `mass`; expected a `mass` with it", key=True)
                 continue
             position = None
             if spec.position is not None:
@@ -575,12 +836,12 @@ class _Builder:
     ) -> sp.ImmutableMatrix | None:
         if spec is None:
             return None
-        vals = {}
-        for key in ("xx", "yy", "zz", "xy", "xz", "yz"):
-            v = self.expr((*path, key), getattr(spec, key), names, "inertia", "an inertia")
-            if v is None:
-                return None
-            vals[key] = v
+        vals = {
+            key: self.expr((*path, key), getattr(spec, key), names, "inertia", "an inertia")
+            for key in ("xx", "yy", "zz", "xy", "xz", "yz")
+        }
+        if any(v is None for v in vals.values()):
+            return None
         return sp.ImmutableMatrix(
             [
                 [vals["xx"], vals["xy"], vals["xz"]],
@@ -590,8 +851,7 @@ class _Builder:
         )
 
     def build_part(self, path: KeyPath, name: str, spec: Any, names: Mapping[str, sp.Expr]) -> Part | None:
-        if not self._check_name(path, name, "part"):
-            return None
+        self._check_name(path, name, "part")
         shape = Shape(spec.shape)
         ok = True
         mass = density = None
@@ -602,19 +862,27 @@ class _Builder:
             density = self.expr((*path, "density"), spec.density, names, "density", "a density")
             ok &= density is not None
         solid = shape in (Shape.BOX, Shape.CYLINDER, Shape.HOLLOW_CYLINDER, Shape.SPHERE)
-        if getattr(spec, "mass", None) is not None and getattr(spec, "density", None) is not None:
-            self.error(path, f"part '{name}' gives both `mass` and `density`; give one of them")
+        has_mass = getattr(spec, "mass", None) is not None
+        has_density = getattr(spec, "density", None) is not None
+        if has_mass and has_density:
+            self.error(path, f"part '{name}' gives both `mass` and `density`; expected one of them", key=True)
             ok = False
-        elif getattr(spec, "mass", None) is None and shape is not Shape.POINT:
+        elif not has_mass and shape is not Shape.POINT:
             if not solid:
+                shape_words = shape.value.replace("_", " ")
                 self.error(
                     path,
-                    f"part '{name}' is a {shape.value.replace('_', ' ')}, which has no volume; give its `mass`",
+                    f"part '{name}' is {_article(shape_words)} {shape_words}, which has no volume; expected its "
+                    f"`mass`, found {'`density`' if has_density else 'neither `mass` nor `density`'}",
                     key=True,
                 )
                 ok = False
-            elif getattr(spec, "density", None) is None:
-                self.error(path, f"part '{name}' needs a `mass` or a `density`", key=True)
+            elif not has_density:
+                self.error(
+                    path,
+                    f"part '{name}' needs a `mass` or a `density`; found neither",
+                    key=True,
+                )
                 ok = False
         dims: list[tuple[str, Any]] = []
         for key in ("size", "radius", "outer_radius", "inner_radius", "length"):
@@ -654,8 +922,12 @@ class _Builder:
         d = dict(dims)
         if shape is Shape.HOLLOW_CYLINDER and ok:
             ro, ri = d["outer_radius"], d["inner_radius"]
-            if (ro - ri).is_number and (ro - ri) < 0:
-                self.error((*path, "inner_radius"), f"inner radius {ri} is larger than the outer radius {ro}")
+            if sp.simplify(ro - ri).is_negative:
+                self.error(
+                    (*path, "inner_radius"),
+                    f"part '{name}': expected inner_radius <= outer_radius, found inner_radius "
+                    f"'{spec.inner_radius}' > outer_radius '{spec.outer_radius}'",
+                )
                 ok = False
         if not ok:
             return None
@@ -664,46 +936,66 @@ class _Builder:
     # -- joints ----------------------------------------------------------------------------
     def build_joints(self, bodies: set[str]) -> list[Joint]:
         out: list[Joint] = []
-        children: dict[str, str] = {}
+        children: dict[str, str] = {}  # body -> the joint that places it
+        links: list[tuple[str, str, str]] = []  # (joint, parent, child) of every well-formed link
         used: dict[str, str] = {}
         consts = self.symbols()
+        known = sorted(bodies | {GROUND})
         for name, spec in self.doc.joints.items():
             path: KeyPath = ("joints", name)
-            if not self._check_name(path, name, "joint"):
-                continue
+            self._check_name(path, name, "joint")
             ok = True
+            if spec.child == GROUND:
+                self.error(
+                    (*path, "child"),
+                    f"joint '{name}' has the ground as its child; expected the body that the joint moves "
+                    f"(known: {', '.join(sorted(bodies)) or 'none'})",
+                )
+                ok = False
             for role in ("parent", "child"):
                 target = getattr(spec, role)
-                allowed = bodies | ({GROUND} if role == "parent" else set())
-                if target not in allowed:
-                    close = difflib.get_close_matches(target, sorted(allowed), n=1)
-                    self.error(
-                        (*path, role),
-                        f"joint '{name}' refers to unknown body '{target}' "
-                        f"(known: {', '.join(sorted(allowed)) or 'none'})",
-                        f"did you mean '{close[0]}'?" if close else None,
-                    )
-                    ok = False
-            if spec.child in children:
+                if target in bodies or (target == GROUND and (role == "parent" or not ok)):
+                    continue
+                close = difflib.get_close_matches(target, known, n=1)
+                self.error(
+                    (*path, role),
+                    f"joint '{name}' refers to unknown body '{target}' (known: {', '.join(known)})",
+                    f"did you mean '{close[0]}'?" if close else None,
+                )
+                ok = False
+            if ok and spec.parent == spec.child:
+                self.error(
+                    (*path, "child"),
+                    f"joint '{name}' connects body '{spec.child}' to itself; expected a child other than its parent",
+                )
+                ok = False
+            elif ok and spec.child in children:
                 self.error(
                     (*path, "child"),
                     f"body '{spec.child}' is already placed by joint '{children[spec.child]}'; "
-                    "each body has one joint to its parent",
+                    "expected one joint from each body to its parent",
                 )
                 ok = False
             elif ok:
                 children[spec.child] = name
-            if spec.parent == spec.child:
-                self.error((*path, "child"), f"joint '{name}' connects body '{spec.child}' to itself")
-                ok = False
+                links.append((name, spec.parent, spec.child))
             kind = JointKind(spec.type)
             coord = None
             if kind is JointKind.FIXED:
                 if spec.coordinate is not None:
-                    self.error((*path, "coordinate"), "a fixed joint has no coordinate")
+                    self.error(
+                        (*path, "coordinate"),
+                        f"joint '{name}' is fixed, so it has no coordinate; found coordinate '{spec.coordinate}'",
+                        "remove `coordinate`, or make the joint revolute or prismatic",
+                    )
                     ok = False
             elif spec.coordinate is None:
-                self.error(path, f"missing required key 'coordinate' in a {kind.value} joint", key=True)
+                self.error(
+                    path,
+                    f"joint '{name}' is {kind.value} and needs a `coordinate` "
+                    f"(declared: {', '.join(self.coords) or 'none'}); found none",
+                    key=True,
+                )
                 ok = False
             elif spec.coordinate not in self.coords:
                 close = difflib.get_close_matches(spec.coordinate, list(self.coords), n=1)
@@ -719,7 +1011,8 @@ class _Builder:
                 if spec.coordinate in used:
                     self.error(
                         (*path, "coordinate"),
-                        f"coordinate '{spec.coordinate}' already drives joint '{used[spec.coordinate]}'",
+                        f"coordinate '{spec.coordinate}' already drives joint '{used[spec.coordinate]}'; "
+                        "expected one joint per coordinate",
                     )
                     ok = False
                 used[spec.coordinate] = name
@@ -727,13 +1020,17 @@ class _Builder:
                 if coord.dimension is not None and coord.dimension != expected:
                     self.error(
                         (*path, "coordinate"),
-                        f"a {kind.value} joint needs a coordinate that is "
-                        f"a(n) {expected}, but '{coord.name}' is declared as a(n) {coord.dimension}",
+                        f"joint '{name}' is {kind.value}, so its coordinate must be {_article(expected)} {expected}; "
+                        f"found '{coord.name}', declared as {_article(coord.dimension)} {coord.dimension}",
                     )
                     ok = False
                 self.dims.setdefault(coord.q, DIMENSIONS[expected])
             if spec.angle == "absolute" and kind is not JointKind.REVOLUTE:
-                self.error((*path, "angle"), "only a revolute joint can measure an absolute angle")
+                self.error(
+                    (*path, "angle"),
+                    f"joint '{name}' is {kind.value}; only a revolute joint can measure an absolute angle",
+                    "remove `angle: absolute`",
+                )
                 ok = False
             axis = self.axis((*path, "axis"), spec.axis, {})
             origin = self.vector((*path, "origin"), spec.origin, consts, "length")
@@ -769,33 +1066,47 @@ class _Builder:
                     self.smap.key_location(path),
                 )
             )
-        # cycles: follow parents from every body
-        parent_of = {j.child: (j.parent, j.name) for j in out}
+        self.placed = dict(children)
+        self.check_loops(links)
+        return out
+
+    def check_loops(self, links: list[tuple[str, str, str]]) -> None:
+        """Every chain of parents must end at the ground: report each loop once, at its first joint."""
+        parent_of = {child: (parent, joint) for joint, parent, child in links}
+        order = {joint: i for i, (joint, _, _) in enumerate(links)}
+        reported: set[frozenset[str]] = set()
         for start in parent_of:
-            seen = [start]
+            chain = [start]
             node = start
             while node in parent_of:
                 node = parent_of[node][0]
-                if node in seen:
-                    jname = parent_of[start][1]
-                    self.error(
-                        ("joints", jname),
-                        "the joints form a loop: "
-                        + " -> ".join([*seen, node])
-                        + "; a kinematic tree must lead back to ground",
-                        key=True,
-                    )
+                if node in chain:
+                    loop = chain[chain.index(node) :]
+                    if frozenset(loop) not in reported:
+                        reported.add(frozenset(loop))
+                        joints = sorted((parent_of[b][1] for b in loop), key=order.__getitem__)
+                        # start the printed chain at the child of the first joint, for a stable message
+                        i = next(k for k, b in enumerate(loop) if parent_of[b][1] == joints[0])
+                        loop = loop[i:] + loop[:i]
+                        self.error(
+                            ("joints", joints[0]),
+                            f"the joints {', '.join(joints)} form a loop (each body's parent, in turn: "
+                            + " -> ".join([*loop, loop[0]])
+                            + "); expected a tree in which every body leads back to ground",
+                            key=True,
+                        )
                     break
-                seen.append(node)
-        return out
+                chain.append(node)
 
-    def check_explicit_placement(self, bodies: list[Body], joints: list[Joint]) -> None:
-        placed = {j.child for j in joints}
-        for b in bodies:
-            if b.name in placed and (b.position is not None or b.rotation_rates):
+    def check_explicit_placement(self) -> None:
+        for name, spec in self.doc.bodies.items():
+            if name in self.placed and (spec.position is not None or spec.orientation):
+                key = "position" if spec.position is not None else "orientation"
                 self.error(
-                    ("bodies", b.name, "position" if b.position is not None else "orientation"),
-                    f"body '{b.name}' is placed by a joint; it cannot also have a `position` or `orientation`",
+                    ("bodies", name, key),
+                    f"body '{name}' is placed by joint '{self.placed[name]}', so it cannot also have "
+                    f"a `position` or `orientation`; found `{key}`",
+                    "remove it, or remove the joint",
                     key=True,
                 )
 
@@ -806,20 +1117,22 @@ class _Builder:
         if between is None:
             return None
         out = []
+        known = sorted(bodies | {GROUND})
         for i, ep in enumerate(between):
-            if ep.body not in bodies | {GROUND}:
-                close = difflib.get_close_matches(ep.body, sorted(bodies | {GROUND}), n=1)
+            at = self.vector((*path, i, "at"), ep.at, self.symbols(), "length")
+            if ep.body not in known:
+                close = difflib.get_close_matches(ep.body, known, n=1)
                 epath = (*path, i, "body") if isinstance(self.smap_get((*path, i)), dict) else (*path, i)
                 self.error(
                     epath,
-                    f"unknown body '{ep.body}' (known: {', '.join(sorted(bodies | {GROUND}))})",
+                    f"{_where(path[:2])} refers to unknown body '{ep.body}' (known: {', '.join(known)})",
                     f"did you mean '{close[0]}'?" if close else None,
                 )
-                return None
-            at = self.vector((*path, i, "at"), ep.at, self.symbols(), "length")
-            if at is None:
-                return None
-            out.append(Endpoint(ep.body, at))
+                continue
+            if at is not None:
+                out.append(Endpoint(ep.body, at))
+        if len(out) != 2:
+            return None
         return (out[0], out[1])
 
     def smap_get(self, path: KeyPath) -> Any:
@@ -837,54 +1150,62 @@ class _Builder:
         kin_names = self.symbols(coords=True)
         consts = self.symbols()
         for section, specs in (("springs", self.doc.springs), ("dampers", self.doc.dampers)):
+            what = section[:-1]
             for name, spec in specs.items():
                 path: KeyPath = (section, name)
-                if not self._check_name(path, name, section[:-1]):
-                    continue
-                if (spec.between is None) == (spec.extension is None):
+                self._check_name(path, name, what)
+                ok = True
+                if spec.between is not None and spec.extension is not None:
                     self.error(
-                        path,
-                        f"{section[:-1]} '{name}' needs exactly one of `between` (two attachment "
-                        "points) or `extension` (an expression)",
+                        (*path, "extension"),
+                        f"{what} '{name}' gives both `between` and `extension`; expected one of them",
                         key=True,
                     )
-                    continue
+                    ok = False
+                elif spec.between is None and spec.extension is None:
+                    self.error(
+                        path,
+                        f"{what} '{name}' needs `between` (two attachment points) or `extension` "
+                        "(an expression of the coordinates); found neither",
+                        key=True,
+                    )
+                    ok = False
                 between = self._endpoints((*path, "between"), spec.between, bodies)
+                ok &= spec.between is None or between is not None
                 ext = None
                 if spec.extension is not None:
                     ext = self.expr((*path, "extension"), spec.extension, kin_names)
-                    if ext is None:
-                        continue
-                elif between is None:
-                    continue
+                    ok &= ext is not None
+                # with `between`, the elongation is a length and the units of k and c follow
+                physical = between is not None
                 if section == "springs":
                     k = self.expr(
-                        (*path, "stiffness"), spec.stiffness, consts, "stiffness" if between else None, "a stiffness"
+                        (*path, "stiffness"), spec.stiffness, consts, "stiffness" if physical else None, "a stiffness"
                     )
                     l0 = (
                         self.expr((*path, "free_length"), spec.free_length, consts, "length")
                         if spec.free_length is not None
                         else sp.Integer(0)
                     )
-                    if spec.free_length is not None and ext is not None:
+                    if spec.free_length is not None and spec.extension is not None and spec.between is None:
                         self.error(
                             (*path, "free_length"),
-                            "`free_length` goes with `between`; with `extension`, "
-                            "write the elongation itself (e.g. 'x - L0')",
+                            f"spring '{name}' gives `free_length` with `extension`; `free_length` goes with "
+                            "`between`: with `extension`, write the elongation itself (e.g. 'x - L0')",
                             key=True,
                         )
-                        continue
-                    if k is not None and l0 is not None:
+                        ok = False
+                    if ok and k is not None and l0 is not None:
                         springs.append(Spring(name, k, l0, between, ext, self.smap.key_location(path)))
                 else:
                     c = self.expr(
                         (*path, "coefficient"),
                         spec.coefficient,
                         consts,
-                        "damping" if between else None,
+                        "damping" if physical else None,
                         "a damping coefficient",
                     )
-                    if c is not None:
+                    if ok and c is not None:
                         dampers.append(Damper(name, c, between, ext, self.smap.key_location(path)))
         return springs, dampers
 
@@ -893,22 +1214,22 @@ class _Builder:
         names = self.symbols(coords=True, rates=True)
         for name, spec in self.doc.loads.items():
             path: KeyPath = ("loads", name)
-            if not self._check_name(path, name, "load"):
-                continue
+            self._check_name(path, name, "load")
             ok = True
-            for role in ("on", "reaction_on"):
+            for role in ("body", "reaction_body"):
                 target = getattr(spec, role)
-                allowed = bodies | ({GROUND} if role == "reaction_on" else set())
+                allowed = bodies | ({GROUND} if role == "reaction_body" else set())
                 if target is not None and target not in allowed:
                     close = difflib.get_close_matches(target, sorted(allowed), n=1)
                     self.error(
                         (*path, role),
-                        f"load '{name}' refers to unknown body '{target}' (known: {', '.join(sorted(allowed))})",
+                        f"load '{name}' refers to unknown body '{target}' "
+                        f"(known: {', '.join(sorted(allowed)) or 'none'})",
                         f"did you mean '{close[0]}'?" if close else None,
                     )
                     ok = False
             if spec.force is None and spec.torque is None:
-                self.error(path, f"load '{name}' needs a `force` or a `torque`", key=True)
+                self.error(path, f"load '{name}' needs a `force` or a `torque` (or both); found neither", key=True)
                 ok = False
             force = self.vector((*path, "force"), spec.force, names) if spec.force is not None else None
             torque = self.vector((*path, "torque"), spec.torque, names) if spec.torque is not None else None
@@ -923,12 +1244,12 @@ class _Builder:
             out.append(
                 Load(
                     name,
-                    spec.on,
+                    spec.body,
                     force,
                     torque,
                     at,
                     spec.frame == "body",
-                    spec.reaction_on,
+                    spec.reaction_body,
                     self.smap.key_location(path),
                 )
             )
@@ -943,7 +1264,8 @@ class _Builder:
                 close = difflib.get_close_matches(cname, list(self.coords), n=1)
                 self.error(
                     path,
-                    f"'{cname}' is not a declared coordinate (declared: {', '.join(self.coords) or 'none'})",
+                    f"generalized force on '{cname}': '{cname}' is not a declared coordinate "
+                    f"(declared: {', '.join(self.coords) or 'none'})",
                     f"did you mean '{close[0]}'?" if close else None,
                     key=True,
                 )
@@ -955,19 +1277,35 @@ class _Builder:
 
     def build_energy(self) -> tuple[sp.Expr | None, sp.Expr | None]:
         spec = self.doc.energy
+        # keys set aside for shape errors (or unknown ones, perhaps a misspelt `bodies`) may be what
+        # is missing here: guess nothing about them
+        unsure = bool(self.dropped_keys - {"tutgen", "title", "statement", "gravity", "ask"})
+        has_bodies = bool(self.doc.bodies or self.doc.joints or self.body_names)
+        has_bodies |= bool(self.dropped_names("joints"))
         if spec is None:
-            if self.coords and not self.doc.bodies:
+            if self.coords and not has_bodies and not unsure:
                 self.error(
                     ("coordinates",),
-                    "the spec has coordinates but no `bodies` and no `energy`; nothing moves",
+                    "the spec has `coordinates` but no `bodies` and no `energy`; expected one of them, "
+                    "to say what moves",
                     key=True,
                 )
             return None, None
-        if self.doc.bodies or self.doc.joints:
-            self.error(("energy",), "give either `energy` or `bodies`/`joints`, not both", key=True)
+        if has_bodies:
+            given = "`bodies`" if self.doc.bodies or self.body_names else "`joints`"
+            self.error(
+                ("energy",),
+                f"the spec gives both `energy` and {given}; expected the energy, or the bodies, not both",
+                key=True,
+            )
             return None, None
         if not self.coords:
-            self.error(("energy",), "`energy` needs `coordinates`", key=True)
+            if not unsure:
+                self.error(
+                    ("energy",),
+                    "`energy` needs `coordinates` (the q_i that T and U depend on); found none",
+                    key=True,
+                )
             return None, None
         t = self.expr(("energy", "kinetic"), spec.kinetic, self.symbols(coords=True, rates=True))
         u = (
@@ -986,6 +1324,32 @@ class _Builder:
         if not self.doc.bodies:
             everything.discard(Ask.INERTIA)
         return frozenset(everything)
+
+
+def _article(words: str) -> str:
+    return "an" if words[:1] in "aeiou" else "a"
+
+
+def _expected_dimension(name: str) -> str:
+    """ "a mass (kg)", "an angle (a plain number, or deg/rad)"."""
+    words = name.replace("_", " ")
+    dim = DIMENSIONS[name]
+    if dim.is_dimensionless:
+        unit = "a plain number, or deg/rad" if name == "angle" else "a plain number"
+    else:
+        unit = str(dim)
+    return f"{_article(words)} {words} ({unit})"
+
+
+def _found_dimension(dim: Dimension) -> str:
+    """ "a length (m)", "a plain number", "a quantity in kg*m"."""
+    if dim.is_dimensionless:
+        return "a plain number"
+    for name, known in DIMENSIONS.items():
+        if known == dim:
+            words = name.replace("_", " ")
+            return f"{_article(words)} {words} ({dim})"
+    return f"a quantity in {dim}"
 
 
 def _mentions(text: str, name: str) -> bool:
