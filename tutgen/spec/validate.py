@@ -679,6 +679,13 @@ class _Builder:
                     value = self.expr(vpath, spec.value, {})
                     if value is None:
                         continue
+            if value is not None and symbol.is_positive and not value.is_positive:
+                # a zero or negative value: the symbol must not be assumed positive, or
+                # sqrt(a**2) would become a before the value is put in
+                dims = self.dims.pop(symbol)
+                symbol = sp.Symbol(name, real=True)
+                self.params[name] = symbol
+                self.dims[symbol] = dims
             latex = spec.latex if spec.latex is not None else sp.latex(symbol)
             self.parameters.append(
                 Parameter(name, symbol, value, latex, spec.description, unit, self.smap.key_location(path))
@@ -1308,12 +1315,41 @@ class _Builder:
                 )
             return None, None
         t = self.expr(("energy", "kinetic"), spec.kinetic, self.symbols(coords=True, rates=True))
+        if t is not None:
+            t = self._check_quadratic(t)
+        if self.doc.gravity is not None:
+            self.error(
+                ("gravity",),
+                "`gravity` has no effect when the energies are given; expected its potential energy in "
+                "`energy.potential` (e.g. m*g*h), found a `gravity` section",
+                key=True,
+            )
         u = (
             self.expr(("energy", "potential"), spec.potential, self.symbols(coords=True))
             if spec.potential is not None
             else sp.Integer(0)
         )
         return t, u
+
+    def _check_quadratic(self, t: sp.Expr) -> sp.Expr | None:
+        """T must be a quadratic form in the velocities: T = q_dot^T H(q) q_dot / 2."""
+        rates = [c.qd for c in self.coords.values()]
+        expanded = sp.expand(t)
+        bad = []
+        for term in sp.Add.make_args(expanded):
+            powers = term.as_powers_dict()
+            degree = sum(powers.get(r, 0) for r in rates)
+            if degree != 2 or any(not sp.sympify(powers.get(r, 0)).is_Integer for r in rates):
+                bad.append(term)
+        if bad:
+            shown = ", ".join(sp.sstr(b) for b in bad[:3]) + (", ..." if len(bad) > 3 else "")
+            self.error(
+                ("energy", "kinetic"),
+                "expected the kinetic energy as a quadratic form in the velocities, T = q_dot^T H(q) q_dot / 2 "
+                f"(every term of degree 2 in the NAME_dot), found the term{'s' if len(bad) > 1 else ''} {shown}",
+            )
+            return None
+        return t
 
     def build_ask(self, dynamic: bool) -> frozenset[Ask]:
         if self.doc.ask is not None:
