@@ -14,6 +14,7 @@ EXIT_CHECK_FAILED = 1
 EXIT_USAGE = 2
 EXIT_INVALID_SPEC = 3
 EXIT_CANNOT_DERIVE = 4
+EXIT_METHODS_DISAGREE = 5
 EXIT_INTERNAL = 70
 
 
@@ -82,6 +83,20 @@ class DerivationError(TutgenError):
     def __str__(self) -> str:
         where = f"{self.location}: " if self.location else ""
         return f"{where}error: {self.message}"
+
+
+class AgreementError(DerivationError):
+    """Newton-Euler and Lagrange gave different equations of motion for a valid spec.
+
+    The two routes are the same physics, so a difference is a tutgen bug; it is reported, never hidden.
+    ``coordinate`` names the equation that differs.
+    """
+
+    exit_code = EXIT_METHODS_DISAGREE
+
+    def __init__(self, message: str, location: Location | None = None, coordinate: str | None = None) -> None:
+        self.coordinate = coordinate
+        super().__init__(message, location)
 
 
 class UsageError(TutgenError):

@@ -8,12 +8,16 @@ the parameters that have values.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import sympy as sp
 
 from tutgen.engine.inertia import BodyInertia, Principal
 from tutgen.engine.kinematics import BodyKinematics
 from tutgen.model.system import System
+
+if TYPE_CHECKING:  # newton_euler.py imports this module
+    from tutgen.engine.newton_euler import NewtonEuler
 
 
 @dataclass(frozen=True)
@@ -74,6 +78,7 @@ class Derivation:
     mass_matrix_determinant: sp.Expr | None = None
     remarks: tuple[str, ...] = ()
     checks: tuple[Check, ...] = ()
+    newton_euler: NewtonEuler | None = None  # the same equations body by body, checked against Lagrange's
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

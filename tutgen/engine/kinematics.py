@@ -180,6 +180,27 @@ class Kinematics:
         cols = [f.jv[:, j] + f.jw[:, j].cross(lever) for j in range(n)]
         return sp.Matrix.hstack(*cols).applyfunc(sp.expand) if n else sp.zeros(3, 0)
 
+    # -- accelerations (for Newton-Euler) ---------------------------------------------------
+    def time_derivative(self, expr: sp.Expr) -> sp.Expr:
+        """d/dt of an expression in q, q_dot by the chain rule: f_q q_dot + f_qdot q_ddot."""
+        out = sp.Integer(0)
+        for c in self.system.coordinates:
+            out += sp.diff(expr, c.q) * c.qd + sp.diff(expr, c.qd) * c.qdd
+        return out
+
+    def acceleration(self, body: str) -> sp.Matrix:
+        """a_G = d/dt (J_v q_dot) of a body's centre of mass, world components, not yet tidied."""
+        return self.bodies[body].velocity.applyfunc(self.time_derivative)
+
+    def angular_acceleration(self, body: str) -> sp.Matrix:
+        """alpha = d/dt (J_w q_dot), world components (the derivative taken in the world frame)."""
+        return self.bodies[body].angular_velocity.applyfunc(self.time_derivative)
+
+    def is_static(self, body: str) -> bool:
+        """True when the body's frame does not move (ground, or a body placed at a constant pose)."""
+        f = self.frames[body]
+        return all(e == 0 for e in f.jv) and all(e == 0 for e in f.jw)
+
 
 def _merge_planar(
     planar: tuple[tuple[sp.Expr, ...], sp.Expr] | None, world_axis: sp.MatrixBase, angle: sp.Expr

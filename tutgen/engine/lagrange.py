@@ -9,23 +9,34 @@ The equations of Lagrange's route and the matrix form are then checked against e
 
 from __future__ import annotations
 
+import dataclasses
+
 import sympy as sp
 
 from tutgen.engine.derivation import BodyEnergy, Check, Derivation, LagrangeTerms
 from tutgen.engine.inertia import BodyInertia, body_inertia, principal_axes
 from tutgen.engine.kinematics import Kinematics
+from tutgen.engine.newton_euler import derive_newton_euler
 from tutgen.engine.tidy import is_zero, tidy, tidy_rates
 from tutgen.errors import DerivationError
 from tutgen.model.system import GROUND, Damper, Spring, System
 
+METHODS = ("both", "lagrange", "newton-euler")
 
-def derive(system: System) -> Derivation:
+
+def derive(system: System, method: str = "both") -> Derivation:
     """Derive everything a spec asks for, in teaching order.
+
+    ``method`` is "both" (the default) or "newton-euler" to add the Newton-Euler derivation and its
+    agreement check when the spec has bodies (not a given energy), or "lagrange" to skip it. Lagrange's
+    route always runs: Newton-Euler is checked against it.
 
     Examples
     ========
     See ``tests/models.py`` for named example systems (simple pendulum, cart-pole, double pendulum).
     """
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {', '.join(METHODS)}, not {method!r}")
     inertia = tuple(body_inertia(b) for b in system.bodies)
     principal = tuple(principal_axes(system_subs(system, bi.inertia_origin)) for bi in inertia)
     if not system.coordinates:
@@ -130,7 +141,7 @@ def derive(system: System) -> Derivation:
     if all(first[key] == 0 for key in first):
         remarks.append("H does not depend on q, so every Christoffel symbol vanishes and C = 0.")
 
-    return Derivation(
+    derivation = Derivation(
         system=system,
         inertia=inertia,
         principal=principal,
@@ -153,6 +164,10 @@ def derive(system: System) -> Derivation:
         remarks=tuple(remarks),
         checks=tuple(checks),
     )
+    if method == "lagrange" or kin is None or not system.bodies:
+        return derivation
+    ne = derive_newton_euler(system, derivation, kin)
+    return dataclasses.replace(derivation, newton_euler=ne, checks=(*derivation.checks, ne.agreement))
 
 
 def system_subs(system: System, m: sp.MatrixBase) -> sp.MatrixBase:

@@ -45,7 +45,7 @@ def _single_angles(expr: sp.Expr) -> bool:
 def tidy_rates(expr: sp.Expr, rates: Sequence[sp.Symbol]) -> sp.Expr:
     """Group a polynomial in the rates (q_dot or q_ddot) by monomial, each coefficient tidied."""
     e = sp.expand(expr)
-    if not rates:
+    if not rates or not e.is_polynomial(*rates):  # e.g. a drag force c*x_dot*abs(x_dot)
         return tidy(e)
     poly = sp.Poly(e, *rates)
     terms = []

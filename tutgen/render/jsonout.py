@@ -14,6 +14,7 @@ from sympy.printing.str import StrPrinter
 
 from tutgen import __version__
 from tutgen.engine.derivation import Derivation
+from tutgen.engine.newton_euler import NewtonEuler
 from tutgen.model.system import Ask
 
 JSON_FORMAT_VERSION = 1
@@ -138,6 +139,8 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
         if Ask.CHRISTOFFEL in ask:
             results["christoffel"] = _christoffel(d.christoffel, num)
             results["christoffel_first_kind"] = _christoffel(d.christoffel_first_kind, num)
+        if d.newton_euler is not None and Ask.EQUATIONS_OF_MOTION in ask:
+            results["newton_euler"] = _newton_euler(d.newton_euler, num)
 
     return {
         "tutgen": __version__,
@@ -148,6 +151,21 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
         "results": results,
         "remarks": list(d.remarks),
         "checks": [{"name": c.name, "passed": c.passed, "detail": c.detail} for c in d.checks],
+    }
+
+
+def _newton_euler(ne: NewtonEuler, num: Any) -> dict[str, Any]:
+    """The Newton-Euler results: the equations in Lagrange's contract ((H q_ddot + C + G - Q)_i, each
+    = 0, same order and sign), and each joint's reaction: the force and the moment (about the joint's
+    origin) that the parent exerts on the child, world components."""
+    return {
+        "method": ne.method.value,
+        "equations_of_motion": vector(num(ne.equations_of_motion)),
+        "reaction_forces": {
+            r.joint: {"force": vector(num(r.force)), "moment": vector(num(r.moment))} for r in ne.reactions
+        },
+        "agrees_with_lagrange": ne.agrees_with_lagrange,
+        "remarks": list(ne.remarks),
     }
 
 
