@@ -25,7 +25,7 @@ def render(derivation: object, fmt: str) -> str:
     return render_markdown(derivation)
 
 
-def solve_specs(paths: list[Path], fmt: str) -> list[str]:
+def solve_specs(paths: list[Path], fmt: str, method: str = "both") -> list[str]:
     """Load every spec (reporting all their errors at once), derive each, render each."""
     from tutgen.engine.lagrange import derive
     from tutgen.spec.validate import load_system
@@ -39,7 +39,7 @@ def solve_specs(paths: list[Path], fmt: str) -> list[str]:
             errors += exc.errors
     if errors:
         raise SpecErrors(errors)
-    return [render(derive(system), fmt) for system in systems]
+    return [render(derive(system, method), fmt) for system in systems]
 
 
 def plan_outputs(specs: list[Path], output: str | Path, fmt: str, *, force: bool) -> list[Path]:

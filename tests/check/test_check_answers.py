@@ -114,8 +114,11 @@ def test_answers_result_keys_are_the_json_contract() -> None:
     [
         pytest.param(
             "H: 1\n",
-            ["answers.yaml:1:1: error: unknown result 'H'; expected one of: " + ", ".join(RESULT_KEYS)
-             + "\n  hint: did you mean 'mass_matrix'?"],
+            [
+                "answers.yaml:1:1: error: unknown result 'H'; expected one of: "
+                + ", ".join(RESULT_KEYS)
+                + "\n  hint: did you mean 'mass_matrix'?"
+            ],
             id="textbook-letter",
         ),
         pytest.param(

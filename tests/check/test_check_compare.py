@@ -85,9 +85,7 @@ def test_compare_diagnose_groups_by_state() -> None:
     state = frozenset({q, qd})
     given = -(a**2) * m * qd**2 * sp.sin(q) + b
     correct = -a * b * m * qd**2 * sp.sin(q) + b
-    assert diagnose(given, correct, state) == (
-        "coefficient of q_dot**2*sin(q): yours is -a**2*m, expected -a*b*m"
-    )
+    assert diagnose(given, correct, state) == ("coefficient of q_dot**2*sin(q): yours is -a**2*m, expected -a*b*m")
 
 
 def test_compare_entry_names() -> None:
@@ -103,11 +101,14 @@ def test_compare_entry_names() -> None:
 
 
 def test_compare_matrix_names_each_wrong_entry() -> None:
-    result = mark_text(tutorial(5), """\
+    result = mark_text(
+        tutorial(5),
+        """\
         mass_matrix:
           - ["(m1 + m2)*a1**2 + m2*a2**2 + 2*m2*a1*a2*cos(theta2)", "-m2*a2**2 - m2*a1*a2*cos(theta2)"]
           - ["m2*a2**2 + m2*a1*a2*cos(theta2)", "2*m2*a2**2"]
-        """)
+        """,
+    )
     assert verdicts(result) == {
         "mass_matrix[1,1]": (Status.CORRECT, ""),
         "mass_matrix[1,2]": (Status.WRONG, SIGN),
@@ -118,11 +119,14 @@ def test_compare_matrix_names_each_wrong_entry() -> None:
 
 
 def test_compare_missing_and_extra_entries() -> None:
-    result = mark_text(tutorial(5), """\
+    result = mark_text(
+        tutorial(5),
+        """\
         gravity_vector: ["(m1 + m2)*g*a1*cos(theta1) + m2*g*a2*cos(theta1 + theta2)"]
         coriolis_vector: [~, "m2*a1*a2*theta1_dot**2*sin(theta2)", "0"]
         potential_energy: ""
-        """)
+        """,
+    )
     found = verdicts(result)
     assert found["gravity_vector[2]"] == (Status.MISSING, "no answer")
     assert found["coriolis_vector[1]"] == (Status.MISSING, "no answer")
@@ -133,11 +137,14 @@ def test_compare_missing_and_extra_entries() -> None:
 
 
 def test_compare_lists_by_coordinate_name_and_number() -> None:
-    result = mark_text(tutorial(4), """\
+    result = mark_text(
+        tutorial(4),
+        """\
         gravity_vector: {r: "m*g*sin(theta)", 1: "m*g*r*cos(theta)"}
         lagrange_terms.r.dL_dq: "m*r*theta_dot**2 - m*g*sin(theta)"
         lagrange_terms.2.dL_dqdot: "m*r_dot"
-        """)
+        """,
+    )
     assert not_correct(result) == set()
     assert set(verdicts(result)) == {
         "gravity_vector[1]",
@@ -149,7 +156,9 @@ def test_compare_lists_by_coordinate_name_and_number() -> None:
 
 def test_compare_christoffel_other_convention_is_accepted_with_a_remark() -> None:
     """p05's symmetric symbols of the first kind, given as the tutorial's h_ijk: accepted, remarked."""
-    result = mark_text(tutorial(5), """\
+    result = mark_text(
+        tutorial(5),
+        """\
         christoffel:
           c111: 0
           c112: -m2*a1*a2*sin(theta2)
@@ -159,7 +168,8 @@ def test_compare_christoffel_other_convention_is_accepted_with_a_remark() -> Non
           c212: 0
           c221: 0
           c222: 0
-        """)
+        """,
+    )
     assert not_correct(result) == set()
     (item,) = result.items
     assert item.remarks == (
@@ -170,9 +180,12 @@ def test_compare_christoffel_other_convention_is_accepted_with_a_remark() -> Non
 
 
 def test_compare_christoffel_mixed_conventions_are_wrong() -> None:
-    result = mark_text(tutorial(5), """\
+    result = mark_text(
+        tutorial(5),
+        """\
         christoffel_first_kind: {"1,1,2": -2*m2*a1*a2*sin(theta2), "1,2,1": -m2*a1*a2*sin(theta2)}
-        """)
+        """,
+    )
     assert not_correct(result) == {"christoffel_first_kind[1,1,2]"}
 
 
@@ -297,13 +310,16 @@ def test_compare_numbers(answer: str, status: Status, feedback: str) -> None:
 
 def test_compare_numbers_file_tolerance_and_parameter_values() -> None:
     """The file's tolerance applies to its numbers; a parameter with a value (rho) may be used."""
-    result = mark_text(tutorial(1), """\
+    result = mark_text(
+        tutorial(1),
+        """\
         tolerance: {rel_tol: 1e-3}
         bodies.body.parts.block.mass: rho*0.05*0.15*0.05
         bodies.body.parts.cylinder.mass: 1.233 kg
         bodies.body.parts.cylinder.volume: pi*0.025^2*0.08
         mass: 5.17 kg
-        """)
+        """,
+    )
     found = verdicts(result)
     assert {k: s for k, (s, _) in found.items()} == {
         "bodies.body.parts.block.mass": Status.CORRECT,
@@ -447,12 +463,15 @@ def test_compare_newton_euler_results() -> None:
     ref = tutorial(3)
     if "newton_euler" not in ref.results:
         pytest.skip("this tutgen does not report Newton-Euler results")
-    result = mark_text(ref, """\
+    result = mark_text(
+        ref,
+        """\
         newton_euler.equations_of_motion.theta: m2*l**2*theta_ddot + m2*l*x_ddot*cos(theta) + m2*g*l*sin(theta) = tau
         newton_euler.reaction_forces.pivot.force[2]: m2*g + m2*l*(theta_ddot*sin(theta) + theta_dot**2*cos(theta))
         newton_euler.reaction_forces.pivot.moment[3]: 0
         newton_euler.agrees_with_lagrange: true
-        """)
+        """,
+    )
     assert {k: s for k, (s, _) in verdicts(result).items()} == {
         "newton_euler.equations_of_motion[2]": Status.CORRECT,
         "newton_euler.reaction_forces.pivot.force[2]": Status.CORRECT,

@@ -57,9 +57,7 @@ def error_of(text: object, symbols: dict[str, sp.Expr] | None = None) -> ExprErr
 @pytest.mark.parametrize(
     ("text", "expected"),
     [
-        pytest.param(
-            "(m1 + m2)*x_ddot + m2*l*cos(theta)", (m1 + m2) * x_ddot + m2 * ell * sp.cos(theta), id="doc"
-        ),
+        pytest.param("(m1 + m2)*x_ddot + m2*l*cos(theta)", (m1 + m2) * x_ddot + m2 * ell * sp.cos(theta), id="doc"),
         pytest.param("-x**2", -(x**2), id="neg-binds-looser-than-pow"),
         pytest.param("-2**2", sp.Integer(-4), id="neg-number-pow"),
         pytest.param("(-2)**2", sp.Integer(4), id="parenthesised-neg-pow"),
@@ -255,12 +253,8 @@ def test_tables() -> None:
             "the parentheses are empty",
             id="empty-parens",
         ),
-        pytest.param(
-            "(x + 1", "unclosed '(': expected ')', found the end of the text", 0, None, id="unclosed"
-        ),
-        pytest.param(
-            "((x)", "unclosed '(': expected ')', found the end of the text", 0, None, id="unclosed-outer"
-        ),
+        pytest.param("(x + 1", "unclosed '(': expected ')', found the end of the text", 0, None, id="unclosed"),
+        pytest.param("((x)", "unclosed '(': expected ')', found the end of the text", 0, None, id="unclosed-outer"),
         pytest.param("x + 1)", "unmatched ')': there is no '(' before it", 5, None, id="unmatched"),
         pytest.param(
             "(x y)",
@@ -329,9 +323,7 @@ def test_tables() -> None:
         pytest.param("sin()", "sin() takes 1 argument, found 0", 0, None, id="arity-zero"),
         pytest.param("1 + cos(x, y)", "cos() takes 1 argument, found 2", 4, None, id="arity-two"),
         pytest.param("atan2(y)", "atan2() takes 2 arguments, found 1", 0, None, id="arity-atan2"),
-        pytest.param(
-            "atan2(y, )", "expected an expression after ',', found ')'", 9, None, id="trailing-comma"
-        ),
+        pytest.param("atan2(y, )", "expected an expression after ',', found ')'", 9, None, id="trailing-comma"),
         pytest.param(
             "sin(x",
             "unclosed '(' of the call to 'sin': expected ')', found the end of the text",
@@ -357,12 +349,8 @@ def test_tables() -> None:
         pytest.param("x/0.0", "division by zero", 1, None, id="div-decimal-zero"),
         pytest.param("0**-1", "division by zero (0 to a negative power)", 1, None, id="zero-negative-power"),
         pytest.param("log(0)", "the result of log(...) is not a finite number", 0, None, id="log-zero"),
-        pytest.param(
-            "1 + tan(pi/2)", "the result of tan(...) is not a finite number", 4, None, id="tan-pole"
-        ),
-        pytest.param(
-            "atan2(0, 0)", "the result of atan2(...) is not a finite number", 0, None, id="atan2-nan"
-        ),
+        pytest.param("1 + tan(pi/2)", "the result of tan(...) is not a finite number", 4, None, id="tan-pole"),
+        pytest.param("atan2(0, 0)", "the result of atan2(...) is not a finite number", 0, None, id="atan2-nan"),
         pytest.param(
             "x**y",
             "the exponent must be a number, found 'y'",
@@ -385,9 +373,7 @@ def test_tables() -> None:
             id="irrational-exponent",
         ),
         pytest.param("x**65", "the exponent 65 is too large (the limit is ±64)", 3, None, id="exponent-65"),
-        pytest.param(
-            "x**-65", "the exponent -65 is too large (the limit is ±64)", 3, None, id="exponent-minus-65"
-        ),
+        pytest.param("x**-65", "the exponent -65 is too large (the limit is ±64)", 3, None, id="exponent-minus-65"),
         pytest.param(
             "1e301",
             "the decimal exponent of the number '1e301' is out of range (the limit is ±300)",
@@ -596,29 +582,25 @@ def test_source_calls_nothing_that_evaluates_text(module: str) -> None:
         ),
         pytest.param(
             "(" * 1999 + "x",
-            "the expression is nested too deeply (more than 50 levels of "
-            "parentheses, function calls, signs or powers)",
+            "the expression is nested too deeply (more than 50 levels of parentheses, function calls, signs or powers)",
             MAX_DEPTH,
             id="parens-1999",
         ),
         pytest.param(
             "-" * 1999 + "x",
-            "the expression is nested too deeply (more than 50 levels of "
-            "parentheses, function calls, signs or powers)",
+            "the expression is nested too deeply (more than 50 levels of parentheses, function calls, signs or powers)",
             MAX_DEPTH,
             id="signs-1999",
         ),
         pytest.param(
             "sin(" * 400 + "x",
-            "the expression is nested too deeply (more than 50 levels of "
-            "parentheses, function calls, signs or powers)",
+            "the expression is nested too deeply (more than 50 levels of parentheses, function calls, signs or powers)",
             4 * MAX_DEPTH + 3,
             id="calls-400",
         ),
         pytest.param(
             "x" + "**x" * 600,
-            "the expression is nested too deeply (more than 50 levels of "
-            "parentheses, function calls, signs or powers)",
+            "the expression is nested too deeply (more than 50 levels of parentheses, function calls, signs or powers)",
             3 * MAX_DEPTH + 1,
             id="power-chain",
         ),

@@ -26,10 +26,7 @@ from tutgen.spec.loader import (
 
 PATH = "spec.yaml"
 TAG_NOT_ALLOWED = "is not allowed; a spec holds only plain mappings, lists, strings and numbers"
-TOO_DEEP = (
-    "the document nests collections more than 64 levels deep (anchors and aliases included); "
-    "refusing to load it"
-)
+TOO_DEEP = "the document nests collections more than 64 levels deep (anchors and aliases included); refusing to load it"
 TOO_BIG = "the document expands to more than 100000 nodes (anchors and aliases included); refusing to load it"
 
 
@@ -306,9 +303,7 @@ def test_two_merge_keys_are_duplicates():
 @pytest.mark.parametrize(
     ("value", "shown"),
     [
-        pytest.param(
-            '!!python/object/apply:os.system ["echo hi"]', "!!python/object/apply:os.system", id="apply"
-        ),
+        pytest.param('!!python/object/apply:os.system ["echo hi"]', "!!python/object/apply:os.system", id="apply"),
         pytest.param("!!python/object:os.system {}", "!!python/object:os.system", id="object"),
         pytest.param("!!python/name:os.system", "!!python/name:os.system", id="name"),
         pytest.param("!foo bar", "!foo", id="local-tag"),
@@ -334,8 +329,7 @@ def test_python_apply_tag_message_and_hint_exactly():
         Location(PATH, 1, 6),
         "tag '!!python/object/apply:os.system' is not allowed; a spec holds only plain mappings, lists, "
         "strings and numbers",
-        "remove the tag; the only tags a spec may use are !!str, !!int, !!float, !!bool, !!null, !!seq, "
-        "!!map",
+        "remove the tag; the only tags a spec may use are !!str, !!int, !!float, !!bool, !!null, !!seq, !!map",
     )
     assert info.value.exit_code == EXIT_INVALID_SPEC
 
@@ -583,8 +577,7 @@ def test_depth_through_aliases_is_refused_at_the_alias():
             (
                 2,
                 1,
-                "expected ',' or ']', but got '<stream end>' (while parsing a flow sequence at line 1, "
-                "column 4)",
+                "expected ',' or ']', but got '<stream end>' (while parsing a flow sequence at line 1, column 4)",
             ),
             id="unclosed-list",
         ),
@@ -900,12 +893,8 @@ def test_unreadable_file(tmp_path: Path):
     [
         pytest.param(b"a: 1\nb: caf\xe9\n", (2, 7), "byte 0xe9: invalid continuation byte", id="latin-1"),
         pytest.param(b"a: \xff\n", (1, 4), "byte 0xff: invalid start byte", id="invalid-start"),
-        pytest.param(
-            "a: 1\nb: é\n".encode() + b"\x80", (3, 1), "byte 0x80: invalid start byte", id="after-text"
-        ),
-        pytest.param(
-            "é: 1\nbé: é\xe9".encode()[:-1], (2, 6), "byte 0xc3: unexpected end of data", id="truncated"
-        ),
+        pytest.param("a: 1\nb: é\n".encode() + b"\x80", (3, 1), "byte 0x80: invalid start byte", id="after-text"),
+        pytest.param("é: 1\nbé: é\xe9".encode()[:-1], (2, 6), "byte 0xc3: unexpected end of data", id="truncated"),
         pytest.param(b"\xef\xbb\xbfa: \xff", (1, 4), "byte 0xff: invalid start byte", id="after-bom"),
         pytest.param("a: 1\n".encode("utf-16"), (1, 1), "byte 0xff: invalid start byte", id="utf-16"),
     ],

@@ -18,11 +18,14 @@ bodies:
 """
 
 
-@pytest.mark.parametrize(("value", "distance", "positive"), [
-    pytest.param("-20 cm", 0.2, False, id="negative"),
-    pytest.param("20 cm", 0.2, True, id="positive"),
-    pytest.param("0", 0.0, False, id="zero"),
-])
+@pytest.mark.parametrize(
+    ("value", "distance", "positive"),
+    [
+        pytest.param("-20 cm", 0.2, False, id="negative"),
+        pytest.param("20 cm", 0.2, True, id="positive"),
+        pytest.param("0", 0.0, False, id="zero"),
+    ],
+)
 def test_parameter_sign_follows_its_value(value: str, distance: float, positive: bool) -> None:
     system = load_system_text(SPEC.format(value=value))
     a = next(p for p in system.parameters if p.name == "a")

@@ -121,9 +121,7 @@ def test_dimension_text_parses_back(name: str) -> None:
         pytest.param("90 deg", sp.pi / 2, D["angle"], "deg", id="deg"),
         pytest.param("0.5 rev", sp.pi, D["angle"], "rev", id="rev"),
         pytest.param("60 rev/min", 2 * sp.pi, D["angular_velocity"], "rev/min", id="rpm"),
-        pytest.param(
-            "1 lbf", sp.Rational(45359237, 10**8) * sp.Rational(980665, 10**5), D["force"], "lbf", id="lbf"
-        ),
+        pytest.param("1 lbf", sp.Rational(45359237, 10**8) * sp.Rational(980665, 10**5), D["force"], "lbf", id="lbf"),
         pytest.param("2 lb", sp.Rational(45359237, 5 * 10**7), D["mass"], "lb", id="lb"),
         pytest.param("10 in", sp.Rational(254, 1000), D["length"], "in", id="inch"),
         pytest.param("1 ft", sp.Rational(3048, 10000), D["length"], "ft", id="foot"),
@@ -188,9 +186,7 @@ def test_not_quantities(text: str) -> None:
         pytest.param("2 sec", "unknown unit 'sec'", 2, "did you mean 's'?", id="alias"),
         pytest.param("100 rpm", "unknown unit 'rpm'", 4, "did you mean 'rev/min'?", id="rpm"),
         pytest.param("1 kgg", "unknown unit 'kgg'", 2, "did you mean 'kg'?", id="close"),
-        pytest.param(
-            "1 kg*mm2", "unknown unit 'mm2'", 5, "write powers with '^', e.g. 'mm^2'", id="glued-power"
-        ),
+        pytest.param("1 kg*mm2", "unknown unit 'mm2'", 5, "write powers with '^', e.g. 'mm^2'", id="glued-power"),
         pytest.param("1 zzz", "unknown unit 'zzz'", 2, KNOWN_UNITS, id="nothing-close"),
         pytest.param("2 e", "unknown unit 'e'", 2, KNOWN_UNITS, id="e"),
         pytest.param(
@@ -200,12 +196,8 @@ def test_not_quantities(text: str) -> None:
             "a quantity is one number followed by a unit, e.g. '15 cm' or '9.81 m/s^2'",
             id="arithmetic",
         ),
-        pytest.param(
-            "1 m/", "expected a unit after '/', found the end of the unit", 4, None, id="trailing-slash"
-        ),
-        pytest.param(
-            "1 N*", "expected a unit after '*', found the end of the unit", 4, None, id="trailing-star"
-        ),
+        pytest.param("1 m/", "expected a unit after '/', found the end of the unit", 4, None, id="trailing-slash"),
+        pytest.param("1 N*", "expected a unit after '*', found the end of the unit", 4, None, id="trailing-star"),
         pytest.param(
             "1 m^x",
             "expected a whole-number power after '^', found 'x'",
@@ -227,12 +219,8 @@ def test_not_quantities(text: str) -> None:
             "multiply units with '*' or a space, e.g. 'N*m' or 'N m'; unit powers are whole numbers",
             id="fractional-power",
         ),
-        pytest.param(
-            "1 m^65", "the power of a unit is too large (the limit is ±64)", 4, None, id="huge-power"
-        ),
-        pytest.param(
-            "1 m^(2", "expected ')' after '2', found the end of the unit", 6, None, id="unclosed-power"
-        ),
+        pytest.param("1 m^65", "the power of a unit is too large (the limit is ±64)", 4, None, id="huge-power"),
+        pytest.param("1 m^(2", "expected ')' after '2', found the end of the unit", 6, None, id="unclosed-power"),
         pytest.param(
             "1 kg/(m*s",
             "unclosed '(' in the unit: expected ')', found the end of the unit",
@@ -240,12 +228,8 @@ def test_not_quantities(text: str) -> None:
             None,
             id="unclosed",
         ),
-        pytest.param(
-            "1 kg)", "unmatched ')' in the unit: there is no '(' before it", 4, None, id="unmatched"
-        ),
-        pytest.param(
-            "3 µm", "unexpected character 'µ' in a unit", 2, "write micro as 'u', e.g. 'um'", id="micro-sign"
-        ),
+        pytest.param("1 kg)", "unmatched ')' in the unit: there is no '(' before it", 4, None, id="unmatched"),
+        pytest.param("3 µm", "unexpected character 'µ' in a unit", 2, "write micro as 'u', e.g. 'um'", id="micro-sign"),
         pytest.param(
             "1 m 2",
             "expected '*', '/', '^' or the end of the unit after 'm', found '2'",
@@ -315,9 +299,7 @@ def test_parse_unit(text: str, factor: sp.Expr, dimension: Dimension) -> None:
         pytest.param("   ", "empty unit", 3, id="blank"),
         pytest.param("m/cms", "unknown unit 'cms'", 2, id="unknown"),
         pytest.param("2 m", "expected a unit, found '2'", 0, id="number"),
-        pytest.param(
-            "m" * 2001, "the unit is too long (2001 characters; the limit is 2000)", 2000, id="long"
-        ),
+        pytest.param("m" * 2001, "the unit is too long (2001 characters; the limit is 2000)", 2000, id="long"),
     ],
 )
 def test_parse_unit_errors(text: str, message: str, offset: int) -> None:
@@ -422,9 +404,7 @@ def test_dimension_of(expr: sp.Expr, expected: Dimension | None) -> None:
             "cannot raise m to the power pi: a quantity with a dimension needs a number exponent",
             id="irrational-exponent",
         ),
-        pytest.param(
-            2**ell, "the exponent of a power must be dimensionless, found m", id="dimensional-exponent"
-        ),
+        pytest.param(2**ell, "the exponent of a power must be dimensionless, found m", id="dimensional-exponent"),
         pytest.param(sp.sign(m + ell), "cannot add m and kg", id="sign-checks-argument"),
     ],
 )

@@ -293,9 +293,7 @@ def read_answers(path: str | Path) -> AnswerSheet:
     errors: list[SpecError] = []
     if not isinstance(data, dict):
         found = "an empty file" if data is None else _describe(data)
-        raise SpecErrors(
-            [SpecError(smap.location(()), f"expected a mapping of result keys to answers, found {found}")]
-        )
+        raise SpecErrors([SpecError(smap.location(()), f"expected a mapping of result keys to answers, found {found}")])
     student = spec = None
     tolerance = Tolerance()
     items: list[AnswerItem] = []

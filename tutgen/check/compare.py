@@ -994,4 +994,3 @@ def check_sheet(sheet: AnswerSheet, ref: Reference) -> list[ItemResult]:
     if sheet.errors or marker.errors:
         raise SpecErrors([*sheet.errors, *marker.errors])
     return items
-

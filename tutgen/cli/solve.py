@@ -16,6 +16,12 @@ class Format(StrEnum):
     json = "json"
 
 
+class Method(StrEnum):
+    both = "both"
+    lagrange = "lagrange"
+    newton_euler = "newton-euler"
+
+
 @handle_errors
 def solve(
     specs: Annotated[list[Path], typer.Argument(help="One or more spec files (YAML).", show_default=False)],
@@ -32,6 +38,15 @@ def solve(
         ),
     ] = None,
     force: Annotated[bool, typer.Option("--force", help="Overwrite existing output files.")] = False,
+    method: Annotated[
+        Method,
+        typer.Option(
+            "--method",
+            "-m",
+            help="Lagrange, Newton-Euler, or both with an agreement check (Newton-Euler needs bodies; "
+            "Lagrange always runs, as the reference Newton-Euler is checked against).",
+        ),
+    ] = Method.both,
 ) -> None:
     """Derive the worked solution of each SPEC and write it as Markdown or JSON.
 
@@ -45,7 +60,7 @@ def solve(
         raise UsageError("several specs need an output directory: add -o DIR")
     if output is not None:
         plan_outputs(specs, output, format.value, force=force)  # refuse early, before the slow part
-    texts = solve_specs(specs, format.value)
+    texts = solve_specs(specs, format.value, method.value)
     if output is None:
         stdout_write(texts[0])
         return

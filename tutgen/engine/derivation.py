@@ -79,6 +79,7 @@ class Derivation:
     remarks: tuple[str, ...] = ()
     checks: tuple[Check, ...] = ()
     newton_euler: NewtonEuler | None = None  # the same equations body by body, checked against Lagrange's
+    method: str = "both"  # what the reader asked to see: "both", "lagrange" or "newton-euler"
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

@@ -163,6 +163,7 @@ def derive(system: System, method: str = "both") -> Derivation:
         mass_matrix_determinant=det,
         remarks=tuple(remarks),
         checks=tuple(checks),
+        method=method,
     )
     if method == "lagrange" or kin is None or not system.bodies:
         return derivation

@@ -122,7 +122,7 @@ def solution_view(d: Derivation) -> dict[str, object]:
             sec.lines.append(_display(f"L = T - U = {tex(num(d.lagrangian))}"))
         sections.append(sec)
 
-    if d.lagrange_terms and Ask.LAGRANGE_EQUATIONS in s.ask:
+    if d.lagrange_terms and Ask.LAGRANGE_EQUATIONS in s.ask and not (d.method == "newton-euler" and d.newton_euler):
         sec = Section(
             "Lagrange's equations",
             "For each coordinate, $\\frac{d}{dt}\\frac{\\partial L}{\\partial \\dot q_i} - "

@@ -56,8 +56,15 @@ def compile_pdf(tex: str, timeout: float = DEFAULT_TIMEOUT) -> bytes:
         work = Path(tmp)
         (work / "solution.tex").write_text(tex, encoding="utf-8")
         cmd = [
-            latexmk, "-norc", "-pdf", "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape",
-            "-file-line-error", "-quiet", "solution.tex",
+            latexmk,
+            "-norc",
+            "-pdf",
+            "-interaction=nonstopmode",
+            "-halt-on-error",
+            "-no-shell-escape",
+            "-file-line-error",
+            "-quiet",
+            "solution.tex",
         ]
         try:
             proc = subprocess.run(
@@ -67,8 +74,11 @@ def compile_pdf(tex: str, timeout: float = DEFAULT_TIMEOUT) -> bytes:
             raise PdfError(f"error: LaTeX did not finish within {timeout:g} s; no PDF was written") from None
         pdf = work / "solution.pdf"
         if proc.returncode != 0 or not pdf.exists():
-            log = (work / "solution.log").read_text(encoding="utf-8", errors="replace") if (
-                work / "solution.log").exists() else proc.stdout + proc.stderr
+            log = (
+                (work / "solution.log").read_text(encoding="utf-8", errors="replace")
+                if (work / "solution.log").exists()
+                else proc.stdout + proc.stderr
+            )
             lines = [ln for ln in log.splitlines() if ln.startswith("!") or ":error:" in ln or ".tex:" in ln]
             detail = "\n  ".join(lines[:8]) or (proc.stderr.strip()[-800:] or "no log")
             raise PdfError(f"error: LaTeX could not compile the solution (a tutgen bug):\n  {detail}")

@@ -227,9 +227,7 @@ def number_to_rational(value: int | float | str) -> sp.Rational:
     else:
         raise ExprError(f"expected a number, found {_kind_of(value)}")
     if len(text) > MAX_LENGTH:
-        raise ExprError(
-            f"the number is too long ({len(text)} characters; the limit is {MAX_LENGTH})", MAX_LENGTH
-        )
+        raise ExprError(f"the number is too long ({len(text)} characters; the limit is {MAX_LENGTH})", MAX_LENGTH)
     start = len(text) - len(text.lstrip())
     stripped = text.strip()
     if not _SIGNED_NUMBER_RE.fullmatch(stripped):
@@ -555,7 +553,5 @@ def parse_expression(text: str | int | float, symbols: Mapping[str, sp.Symbol | 
     if not isinstance(text, str):
         raise ExprError(f"expected an expression, found {_kind_of(text)}")
     if len(text) > MAX_LENGTH:
-        raise ExprError(
-            f"the expression is too long ({len(text)} characters; the limit is {MAX_LENGTH})", MAX_LENGTH
-        )
+        raise ExprError(f"the expression is too long ({len(text)} characters; the limit is {MAX_LENGTH})", MAX_LENGTH)
     return _Parser(text, symbols).parse()

@@ -82,9 +82,7 @@ _ALLOWED_TAGS = frozenset({_STR, _INT, _FLOAT, _BOOL, _NULL, _SEQ, _MAP})
 #: The tag our composer gives a scalar written without one: resolved later from its style and text.
 _UNTAGGED = "tutgen:untagged"
 
-_TAG_HINT = (
-    "remove the tag; the only tags a spec may use are !!str, !!int, !!float, !!bool, !!null, !!seq, !!map"
-)
+_TAG_HINT = "remove the tag; the only tags a spec may use are !!str, !!int, !!float, !!bool, !!null, !!seq, !!map"
 
 # --- YAML 1.2 core schema ---
 
@@ -534,8 +532,7 @@ class _Builder:
     def _not_allowed(self, node: Node) -> None:
         self._error(
             node,
-            f"tag '{_show_tag(node.tag)}' is not allowed; a spec holds only plain mappings, lists, strings "
-            "and numbers",
+            f"tag '{_show_tag(node.tag)}' is not allowed; a spec holds only plain mappings, lists, strings and numbers",
             _TAG_HINT,
         )
 
@@ -587,9 +584,7 @@ class _Builder:
             if isinstance(key_node, _Placeholder):
                 continue
             if not isinstance(key_node, ScalarNode):
-                self._error(
-                    key_mark, f"a mapping key must be a name or a number; found {_describe(key_node)}"
-                )
+                self._error(key_mark, f"a mapping key must be a name or a number; found {_describe(key_node)}")
                 continue
             self._scalar(key_node)  # checks its tag; the key itself is its text as written
             key = key_node.value

@@ -298,11 +298,7 @@ class _UnitParser:
         return UnitError(f"expected {expected}{after}, found {self.tok.describe()}", self.tok.offset, hint)
 
     def _starts_factor(self) -> bool:
-        return (
-            self.tok.kind == "name"
-            or self.tok.is_op("(")
-            or (self.tok.kind == "integer" and self.tok.text == "1")
-        )
+        return self.tok.kind == "name" or self.tok.is_op("(") or (self.tok.kind == "integer" and self.tok.text == "1")
 
     def _product(self, depth: int) -> tuple[sp.Expr, Dimension]:
         factor, dimension = self._power(depth)
@@ -365,15 +361,11 @@ class _UnitParser:
             return sp.Integer(1), _ONE
         if tok.is_op("("):
             if depth >= MAX_DEPTH:
-                raise UnitError(
-                    f"the unit is nested too deeply (more than {MAX_DEPTH} parentheses)", tok.offset
-                )
+                raise UnitError(f"the unit is nested too deeply (more than {MAX_DEPTH} parentheses)", tok.offset)
             self._advance()
             inner = self._product(depth + 1)
             if self.tok.kind == "end":
-                raise UnitError(
-                    "unclosed '(' in the unit: expected ')', found the end of the unit", tok.offset
-                )
+                raise UnitError("unclosed '(' in the unit: expected ')', found the end of the unit", tok.offset)
             if not self.tok.is_op(")"):
                 raise self._unexpected("'*', '/', '^' or ')'")
             self._advance()
@@ -406,9 +398,7 @@ def parse_unit(text: str) -> tuple[sp.Expr, Dimension]:
     :class:`Dimension` parses back to that dimension with factor 1.
     """
     if len(text) > MAX_LENGTH:
-        raise UnitError(
-            f"the unit is too long ({len(text)} characters; the limit is {MAX_LENGTH})", MAX_LENGTH
-        )
+        raise UnitError(f"the unit is too long ({len(text)} characters; the limit is {MAX_LENGTH})", MAX_LENGTH)
     return _UnitParser(text, 0).parse()
 
 
@@ -458,9 +448,7 @@ def _function_name(expr: sp.Basic) -> str:
     return str(expr.func.__name__)
 
 
-def _power_dimension(
-    base: Dimension | None, exponent: sp.Expr, exponent_dim: Dimension | None
-) -> Dimension | None:
+def _power_dimension(base: Dimension | None, exponent: sp.Expr, exponent_dim: Dimension | None) -> Dimension | None:
     if exponent_dim is not None and not exponent_dim.is_dimensionless:
         raise DimensionMismatch(f"the exponent of a power must be dimensionless, found {exponent_dim}")
     if base is None:
@@ -540,9 +528,7 @@ def dimension_of(expr: sp.Expr, dims: Mapping[sp.Symbol, Dimension | None]) -> D
     if isinstance(expr, sp.atan2):
         y_dim, x_dim = (dimension_of(arg, dims) for arg in expr.args)
         if y_dim is not None and x_dim is not None and y_dim != x_dim:
-            raise DimensionMismatch(
-                f"the arguments of atan2 must have the same dimension, found {y_dim} and {x_dim}"
-            )
+            raise DimensionMismatch(f"the arguments of atan2 must have the same dimension, found {y_dim} and {x_dim}")
         return _ONE
     if isinstance(expr, _DIMENSIONLESS_FUNCTIONS):
         for arg in expr.args:
