@@ -38,8 +38,10 @@ class BodyEnergy:
 
     name: str
     speed_squared: sp.Expr  # |v_G|^2
-    translational: sp.Expr  # m |v_G|^2 / 2
-    rotational: sp.Expr  # omega . J_G omega / 2
+    # m |v_G|^2 / 2 and omega . J_G omega / 2; for a body of several parts, the sums over its parts of
+    # m_p |v_p|^2 / 2 and omega . J_p omega / 2 (the same total, without dividing by the total mass)
+    translational: sp.Expr
+    rotational: sp.Expr
     kinetic: sp.Expr
     gravitational: sp.Expr
 

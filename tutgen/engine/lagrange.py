@@ -14,7 +14,7 @@ import dataclasses
 import sympy as sp
 
 from tutgen.engine.derivation import BodyEnergy, Check, Derivation, LagrangeTerms
-from tutgen.engine.inertia import BodyInertia, body_inertia, principal_axes
+from tutgen.engine.inertia import body_inertia, principal_axes
 from tutgen.engine.kinematics import Kinematics
 from tutgen.engine.newton_euler import derive_newton_euler
 from tutgen.engine.tidy import is_zero, tidy, tidy_rates
@@ -67,17 +67,31 @@ def derive(system: System, method: str = "both") -> Derivation:
         h = sp.zeros(n, n)
         u_total = sp.Integer(0)
         qd_vec = sp.Matrix(qd)
+        g_vec = sp.Matrix(system.gravity) if system.gravity is not None else None
         for bi in inertia:
             bk = kin.bodies[bi.name]
-            h_trans = (bk.jv.T * bk.jv).applyfunc(lambda e, m=bi.mass: tidy(m * e))
-            h_rot = _rotational_block(bi, bk.rotation, bk.jw)
+            if len(bi.parts) > 1:
+                # part by part (sum of m_p J_p^T J_p, each part's own inertia): the centre of mass,
+                # a quotient by the total mass, then never enters the expressions
+                h_trans = sp.zeros(n, n)
+                grav = sp.Integer(0)
+                for part in bi.parts:
+                    r_p = kin.point(bi.name, part.centroid)
+                    j_p = r_p.jacobian(q)
+                    h_trans += (j_p.T * j_p).applyfunc(lambda e, m=part.mass: tidy(m * e))
+                    if g_vec is not None:
+                        grav += -part.mass * (g_vec.T * r_p)[0]
+                own = sum((sp.Matrix(part.inertia_centroid) for part in bi.parts), sp.zeros(3, 3))
+                h_rot = _rotational_block(own, bk.rotation, bk.jw)
+                grav = tidy(grav)
+            else:
+                h_trans = (bk.jv.T * bk.jv).applyfunc(lambda e, m=bi.mass: tidy(m * e))
+                h_rot = _rotational_block(bi.inertia_com, bk.rotation, bk.jw)
+                grav = tidy(-bi.mass * (g_vec.T * sp.Matrix(bk.com))[0]) if g_vec is not None else sp.Integer(0)
             h += h_trans + h_rot
             v2 = tidy_rates((qd_vec.T * (bk.jv.T * bk.jv).applyfunc(tidy) * qd_vec)[0], qd)
             t_trans = tidy_rates((qd_vec.T * h_trans * qd_vec)[0] / 2, qd)
             t_rot = tidy_rates((qd_vec.T * h_rot * qd_vec)[0] / 2, qd)
-            grav = sp.Integer(0)
-            if system.gravity is not None:
-                grav = tidy(-bi.mass * (sp.Matrix(system.gravity).T * sp.Matrix(bk.com))[0])
             u_total += grav
             energies.append(BodyEnergy(bi.name, v2, t_trans, t_rot, tidy_rates(t_trans + t_rot, qd), grav))
         h = h.applyfunc(tidy)
@@ -184,13 +198,13 @@ def _ddt(expr: sp.Expr, q: list[sp.Symbol], qd: list[sp.Symbol], qdd: list[sp.Sy
     return out
 
 
-def _rotational_block(bi: BodyInertia, rotation: sp.MatrixBase, jw: sp.MatrixBase) -> sp.Matrix:
-    """J_w^T (R J_G R^T) J_w, computed in body axes: (R^T J_w)^T J_G (R^T J_w)."""
+def _rotational_block(inertia: sp.MatrixBase, rotation: sp.MatrixBase, jw: sp.MatrixBase) -> sp.Matrix:
+    """J_w^T (R J R^T) J_w for an inertia J in body axes, computed as (R^T J_w)^T J (R^T J_w)."""
     n = jw.shape[1]
-    if bi.inertia_com == sp.zeros(3, 3) or n == 0:
+    if sp.Matrix(inertia) == sp.zeros(3, 3) or n == 0:
         return sp.zeros(n, n)
     jw_body = (sp.Matrix(rotation).T * sp.Matrix(jw)).applyfunc(tidy)
-    return (jw_body.T * sp.Matrix(bi.inertia_com) * jw_body).applyfunc(tidy)
+    return (jw_body.T * sp.Matrix(inertia) * jw_body).applyfunc(tidy)
 
 
 def _length_between(element: Spring | Damper, kin: Kinematics | None) -> sp.Expr:
