@@ -103,3 +103,15 @@ class UsageError(TutgenError):
     """A command-line mistake that Click itself cannot see (e.g. -o would overwrite a spec)."""
 
     exit_code = EXIT_USAGE
+
+
+class DerivationTimeout(DerivationError):
+    """A derivation ran past its time limit (``tutgen solve --timeout``); ``step`` is where it was."""
+
+    def __init__(self, seconds: float, step: str) -> None:
+        self.seconds = seconds
+        self.step = step
+        shown = f"{seconds:g}"
+        super().__init__(
+            f"the derivation did not finish within {shown} s (it was at: {step}); simplify the spec or raise --timeout"
+        )

@@ -13,13 +13,15 @@ import dataclasses
 
 import sympy as sp
 
+from tutgen.engine.checks import verify
 from tutgen.engine.derivation import BodyEnergy, Check, Derivation, LagrangeTerms
-from tutgen.engine.inertia import body_inertia, principal_axes
+from tutgen.engine.inertia import BodyInertia, body_inertia, principal_axes
 from tutgen.engine.kinematics import Kinematics
 from tutgen.engine.newton_euler import derive_newton_euler
 from tutgen.engine.tidy import is_zero, tidy, tidy_rates
 from tutgen.errors import DerivationError
-from tutgen.model.system import GROUND, Damper, Spring, System
+from tutgen.limits import checkpoint
+from tutgen.model.system import GROUND, Ask, Damper, Spring, System
 
 METHODS = ("both", "lagrange", "newton-euler")
 
@@ -37,6 +39,7 @@ def derive(system: System, method: str = "both") -> Derivation:
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {', '.join(METHODS)}, not {method!r}")
+    checkpoint("inertia")
     inertia = tuple(body_inertia(b) for b in system.bodies)
     principal = tuple(principal_axes(system_subs(system, bi.inertia_origin)) for bi in inertia)
     if not system.coordinates:
@@ -63,12 +66,14 @@ def derive(system: System, method: str = "both") -> Derivation:
         u_total = sp.expand(system.potential_energy) if system.potential_energy is not None else sp.Integer(0)
         bodies_kin = ()
     else:
+        checkpoint("kinematics")
         kin = Kinematics(system, {bi.name: bi.com for bi in inertia})
         h = sp.zeros(n, n)
         u_total = sp.Integer(0)
         qd_vec = sp.Matrix(qd)
         g_vec = sp.Matrix(system.gravity) if system.gravity is not None else None
         for bi in inertia:
+            checkpoint(f"energies of body '{bi.name}'")
             bk = kin.bodies[bi.name]
             if len(bi.parts) > 1:
                 # part by part (sum of m_p J_p^T J_p, each part's own inertia): the centre of mass,
@@ -98,16 +103,19 @@ def derive(system: System, method: str = "both") -> Derivation:
         t_total = tidy_rates((qd_vec.T * h * qd_vec)[0] / 2, qd)
         bodies_kin = tuple(kin.bodies[b.name] for b in system.bodies)
 
+    checkpoint("energies of springs")
     spring_energies = tuple((s.name, _spring_energy(s, kin, system)) for s in system.springs)
     u_total = tidy(u_total + sum((e for _, e in spring_energies), sp.Integer(0)))
     lagrangian = t_total - u_total
 
+    checkpoint("generalized forces")
     forces = _generalized_forces(system, kin, q, qd)
 
     # Lagrange's equation, term by term: d/dt(dL/dq_dot_i) - dL/dq_i = Q_i
     terms: list[LagrangeTerms] = []
     eom_lagrange: list[sp.Expr] = []
     for i, coord in enumerate(system.coordinates):
+        checkpoint(f"Lagrange's equation for {coord.name}")
         p_i = tidy_rates(sp.diff(lagrangian, qd[i]), qd)
         dp_i = tidy_rates(_ddt(p_i, q, qd, qdd), [*qdd, *qd])
         f_i = tidy_rates(sp.diff(lagrangian, q[i]), qd)
@@ -115,7 +123,9 @@ def derive(system: System, method: str = "both") -> Derivation:
         eom_lagrange.append(dp_i - f_i - forces[i])
 
     # matrix form
+    checkpoint("mass matrix")
     hm = sp.ImmutableMatrix(h)
+    checkpoint("Christoffel symbols")
     first = {
         (i, j, k): tidy((sp.diff(h[i, j], q[k]) + sp.diff(h[i, k], q[j]) - sp.diff(h[j, k], q[i])) / 2)
         for i in range(n)
@@ -128,6 +138,7 @@ def derive(system: System, method: str = "both") -> Derivation:
         for j in range(n)
         for k in range(n)
     }
+    checkpoint("Coriolis and gravity terms")
     c_vec = sp.ImmutableMatrix(
         [
             tidy_rates(sum((first[i, j, k] * qd[j] * qd[k] for j in range(n) for k in range(n)), sp.Integer(0)), qd)
@@ -143,6 +154,7 @@ def derive(system: System, method: str = "both") -> Derivation:
         [tidy_rates((hm * sp.Matrix(qdd))[i] + c_vec[i] + g_vec[i] - q_vec[i], [*qdd, *qd]) for i in range(n)]
     )
 
+    checkpoint("checks")
     checks = [_agreement(eom, eom_lagrange, system)]
     h_dot = hm.applyfunc(lambda e: _ddt(e, q, qd, qdd))
     skew = h_dot - 2 * c_mat
@@ -152,6 +164,7 @@ def derive(system: System, method: str = "both") -> Derivation:
 
     det = tidy(hm.det(method="berkowitz")) if n <= 4 else None
     remarks += _degeneracy_remarks(system, hm, det, t_total, u_total, forces, eom)
+    remarks += _zero_remarks(system, inertia, u_total, forces)
     if all(first[key] == 0 for key in first):
         remarks.append("H does not depend on q, so every Christoffel symbol vanishes and C = 0.")
 
@@ -179,8 +192,11 @@ def derive(system: System, method: str = "both") -> Derivation:
         checks=tuple(checks),
         method=method,
     )
+    checkpoint("checks: mass matrix and dimensions")
+    derivation = dataclasses.replace(derivation, checks=(*derivation.checks, *verify(system, derivation)))
     if method == "lagrange" or kin is None or not system.bodies:
         return derivation
+    checkpoint("Newton-Euler")
     ne = derive_newton_euler(system, derivation, kin)
     return dataclasses.replace(derivation, newton_euler=ne, checks=(*derivation.checks, ne.agreement))
 
@@ -281,6 +297,38 @@ def _agreement(eom: sp.MatrixBase, lagrange: list[sp.Expr], system: System) -> C
                 coord.origin,
             )
     return Check("matrix_form_equals_lagrange", True, "H q_ddot + C + G - Q equals Lagrange's equations")
+
+
+def _zero_remarks(system: System, inertia: tuple[BodyInertia, ...], u: sp.Expr, forces: list[sp.Expr]) -> list[str]:
+    """Bodies without mass, springs without stiffness, dampers without damping, no gravity: valid, but worth
+    a word, since each is usually a slip in the spec."""
+    values = system.values
+
+    def is_zero_value(e: sp.Expr | None) -> bool:
+        return e is not None and sp.sympify(e).subs(values) == 0
+
+    # a massless body that carries others is a device of the kinematics (a gimbal frame), not a slip
+    parents = {j.parent for j in system.joints}
+    out = [
+        f"Body '{bi.name}' has zero mass, so it adds nothing to T, U or H."
+        for bi in inertia
+        if is_zero_value(bi.mass) and bi.name not in parents
+    ]
+    out += [
+        f"Spring '{s.name}' has zero stiffness, so it stores no energy and adds nothing to U or G."
+        for s in system.springs
+        if is_zero_value(s.stiffness)
+    ]
+    out += [
+        f"Damper '{d.name}' has a zero coefficient, so it adds nothing to the generalized forces."
+        for d in system.dampers
+        if is_zero_value(d.coefficient)
+    ]
+    no_gravity = system.gravity is None or all(is_zero_value(g) for g in system.gravity)
+    asked = Ask.EQUATIONS_OF_MOTION in system.ask
+    if asked and system.bodies and no_gravity and u == 0 and all(is_zero_value(f) for f in forces):
+        out.append("There is no gravity and no other force: U = 0, G = 0 and Q = 0, so the motion is force-free.")
+    return out
 
 
 def _degeneracy_remarks(

@@ -36,6 +36,7 @@ from tutgen.engine.inertia import BodyInertia, body_inertia
 from tutgen.engine.kinematics import Kinematics
 from tutgen.engine.tidy import is_zero, tidy, trig_reduce
 from tutgen.errors import AgreementError, DerivationError
+from tutgen.limits import checkpoint
 from tutgen.model.system import GROUND, Joint, JointKind, System
 
 Vec = sp.ImmutableMatrix
@@ -372,6 +373,7 @@ class _Builder:
         out: dict[str, Motion] = {}
         kin = self.kin
         for joint in joints:
+            checkpoint(f"Newton-Euler: motion of body '{joint.child}'")
             p, c = joint.parent, joint.child
             if p in out:
                 w_p, al_p = sp.Matrix(out[p].angular_velocity), sp.Matrix(out[p].angular_acceleration)
@@ -401,6 +403,7 @@ class _Builder:
         """omega = J_w q_dot and a_G, alpha by the chain rule, d/dt (J q_dot)."""
         out = {}
         for b in self.system.bodies:
+            checkpoint(f"Newton-Euler: motion of body '{b.name}'")
             bk = self.kin.bodies[b.name]
             out[b.name] = Motion(
                 b.name,
@@ -524,6 +527,7 @@ class _Builder:
                 "spring, -dD/dq_dot_i for a damper) at that coordinate's joint."
             )
         eom = sp.ImmutableMatrix([e.equation for e in equations])
+        checkpoint("Newton-Euler: agreement with Lagrange")
         agreement = _agreement(self.system, eom, lagrange_eom)
         order = [b.name for b in self.system.bodies]
         return NewtonEuler(
@@ -548,6 +552,7 @@ class _Builder:
         balances: dict[str, BodyBalance] = {}
         for joint in reversed(joints):
             body = joint.child
+            checkpoint(f"Newton-Euler: balance of body '{body}'")
             origin = sp.Matrix(kin.frames[body].position)
             motion = motions[body]
             inertial_force, inertial_moment = self.inertial(body, motion)
@@ -623,6 +628,7 @@ class _Builder:
         for b in self.system.bodies:
             if self.kin.is_static(b.name):
                 continue
+            checkpoint(f"Newton-Euler: balance of body '{b.name}'")
             inertial_force, inertial_moment = self.inertial(b.name, motions[b.name])
             com = sp.Matrix(self.kin.bodies[b.name].com)
             f = sp.Matrix(inertial_force)
@@ -728,6 +734,7 @@ class _Builder:
         for b in self.system.bodies:
             if kin.is_static(b.name):
                 continue
+            checkpoint(f"Newton-Euler: equations, body '{b.name}'")
             bk = kin.bodies[b.name]
             inertial_force, inertial_moment = self.inertial(b.name, motions[b.name])
             jw = kin.frames[b.name].jw

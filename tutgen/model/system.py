@@ -18,6 +18,7 @@ from enum import StrEnum
 import sympy as sp
 
 from tutgen.errors import Location
+from tutgen.spec.units import Dimension
 
 Vector = sp.ImmutableMatrix
 Matrix3 = sp.ImmutableMatrix
@@ -36,6 +37,7 @@ class Parameter:
     description: str | None
     unit: str | None
     origin: Location
+    dimension: Dimension | None = None  # from its unit or declared dimension; None when unknown
 
 
 @dataclass(frozen=True)
@@ -50,6 +52,8 @@ class Coordinate:
     description: str | None
     dimension: str | None  # "length", "angle" or unknown
     origin: Location
+    # the same as a Dimension, also when only the joint says it (revolute: angle, prismatic: length)
+    si_dimension: Dimension | None = None
 
 
 class Shape(StrEnum):

@@ -7,6 +7,7 @@ user text as code.
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import keyword
 import re
@@ -614,12 +615,18 @@ class _Builder:
         if self.errors:
             raise SpecErrors(self.errors)
         ask = self.build_ask(bool(self.coords))
+        # each coordinate's dimension is known only now (a joint may have given it)
+        coords = {n: dataclasses.replace(c, si_dimension=self.dims.get(c.q)) for n, c in self.coords.items()}
+        joints = [
+            dataclasses.replace(j, coordinate=coords[j.coordinate.name]) if j.coordinate is not None else j
+            for j in joints
+        ]
         return System(
             title=doc.title.strip(),
             statement=doc.statement.strip() if doc.statement else None,
             source=self.smap.path,
             parameters=tuple(self.parameters),
-            coordinates=tuple(self.coords.values()),
+            coordinates=tuple(coords.values()),
             bodies=tuple(bodies),
             joints=tuple(joints),
             gravity=gravity,
@@ -687,8 +694,9 @@ class _Builder:
                 self.params[name] = symbol
                 self.dims[symbol] = dims
             latex = spec.latex if spec.latex is not None else sp.latex(symbol)
+            where = self.smap.key_location(path)
             self.parameters.append(
-                Parameter(name, symbol, value, latex, spec.description, unit, self.smap.key_location(path))
+                Parameter(name, symbol, value, latex, spec.description, unit, where, self.dims.get(symbol))
             )
 
     def build_coordinates(self) -> None:

@@ -1,0 +1,92 @@
+"""The derivation time limit: a slow spec stops cleanly, naming the step it had reached."""
+
+from __future__ import annotations
+
+import threading
+import time
+
+import pytest
+
+from tutgen.errors import EXIT_CANNOT_DERIVE, DerivationError, DerivationTimeout
+from tutgen.limits import DEFAULT_TIMEOUT, checkpoint, current_step, deadline, derive_with_deadline
+from tutgen.spec.validate import load_system_text
+
+
+def spatial_chain(links: int) -> str:
+    """A chain of ``links`` point masses whose joint axes alternate z, y, x: slow to derive symbolically."""
+    axes = ["z", "y", "x"]
+    lines = [
+        "tutgen: 1",
+        f"title: {links}-link spatial chain",
+        "parameters: [g, " + ", ".join(f"m{i}, l{i}" for i in range(1, links + 1)) + "]",
+        "coordinates: [" + ", ".join(f"q{i}" for i in range(1, links + 1)) + "]",
+        "gravity: [0, 0, -g]",
+        "bodies:",
+    ]
+    for i in range(1, links + 1):
+        lines.append(f"  link{i}: {{mass: m{i}, com: [l{i}, 0, 0]}}")
+    lines.append("joints:")
+    for i in range(1, links + 1):
+        parent = "ground" if i == 1 else f"link{i - 1}"
+        origin = "[0, 0, 0]" if i == 1 else f"[l{i - 1}, 0, 0]"
+        lines.append(
+            f"  j{i}: {{type: revolute, parent: {parent}, child: link{i}, axis: {axes[i % 3]}, "
+            f"origin: {origin}, coordinate: q{i}}}"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def test_limits_slow_spec_stops_cleanly_naming_the_step() -> None:
+    system = load_system_text(spatial_chain(7), "chain7.yaml")
+    start = time.monotonic()
+    with pytest.raises(DerivationTimeout) as info:
+        derive_with_deadline(system, "both", 1)
+    elapsed = time.monotonic() - start
+    assert elapsed < 10, f"the 1 s deadline took {elapsed:.1f} s to stop the derivation"
+    err = info.value
+    assert isinstance(err, DerivationError)
+    assert err.exit_code == EXIT_CANNOT_DERIVE
+    assert err.step and err.step != "start"
+    assert str(err).startswith("chain7.yaml:1:1: error: the derivation did not finish within 1 s (it was at: ")
+    assert str(err).endswith("); simplify the spec or raise --timeout")
+
+
+def test_limits_deadline_is_disarmed_after_the_block() -> None:
+    with deadline(0.2):
+        checkpoint("quick")
+    time.sleep(0.4)  # no stray alarm afterwards
+    assert current_step() == "quick"
+
+
+def test_limits_zero_none_and_other_threads_are_no_ops() -> None:
+    for seconds in (0, None):
+        with deadline(seconds):
+            time.sleep(0.05)
+    errors: list[BaseException] = []
+
+    def worker() -> None:
+        try:
+            with deadline(0.01):
+                time.sleep(0.1)
+        except BaseException as exc:  # pragma: no cover - would be the failure
+            errors.append(exc)
+
+    thread = threading.Thread(target=worker)
+    thread.start()
+    thread.join()
+    assert not errors
+
+
+def test_limits_expiry_raises_again_at_the_next_checkpoint() -> None:
+    """sympy sometimes catches Exception; a swallowed timeout is raised again at the next step."""
+    with pytest.raises(DerivationTimeout, match=r"it was at: step one"), deadline(0.05):
+        checkpoint("step one")
+        try:
+            time.sleep(1)
+        except Exception:
+            pass
+        checkpoint("step two")
+
+
+def test_limits_default_timeout() -> None:
+    assert DEFAULT_TIMEOUT == 120
