@@ -19,6 +19,15 @@ settings.register_profile("long", max_examples=200, deadline=None, suppress_heal
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
 
 
+def pytest_addoption(parser: pytest.Parser) -> None:
+    parser.addoption(
+        "--update-golden",
+        action="store_true",
+        default=False,
+        help="rewrite tests/golden/ from the current output instead of comparing (review the diff)",
+    )
+
+
 def all_specs() -> list[Path]:
     return sorted(SPECS.rglob("*.yaml"))
 

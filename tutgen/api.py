@@ -8,11 +8,12 @@ from pathlib import Path
 
 from tutgen.errors import SpecError, SpecErrors, UsageError
 
-EXTENSIONS = {"md": ".md", "json": ".json"}
+EXTENSIONS = {"md": ".md", "tex": ".tex", "pdf": ".pdf", "json": ".json"}
 
 
-def render(derivation: object, fmt: str) -> str:
-    """Render one derivation in a format ('md' or 'json')."""
+def render(derivation: object, fmt: str, template_dir: Path | None = None) -> str | bytes:
+    """Render one derivation in a format: 'md', 'tex', 'json' give text, 'pdf' gives bytes
+    (the 'tex' document compiled with latexmk; :class:`tutgen.render.pdf.PdfError` if it cannot be)."""
     from tutgen.engine.derivation import Derivation
 
     assert isinstance(derivation, Derivation)
@@ -20,12 +21,23 @@ def render(derivation: object, fmt: str) -> str:
         from tutgen.render.jsonout import derivation_to_json, dumps
 
         return dumps(derivation_to_json(derivation))
+    if fmt in ("tex", "pdf"):
+        from tutgen.render.latex import render_latex
+
+        tex = render_latex(derivation, template_dir)
+        if fmt == "tex":
+            return tex
+        from tutgen.render.pdf import compile_pdf
+
+        return compile_pdf(tex)
     from tutgen.render.markdown import render_markdown
 
-    return render_markdown(derivation)
+    return render_markdown(derivation, template_dir)
 
 
-def solve_specs(paths: list[Path], fmt: str, method: str = "both") -> list[str]:
+def solve_specs(
+    paths: list[Path], fmt: str, method: str = "both", template_dir: Path | None = None
+) -> list[str | bytes]:
     """Load every spec (reporting all their errors at once), derive each, render each."""
     from tutgen.engine.lagrange import derive
     from tutgen.spec.validate import load_system
@@ -39,7 +51,14 @@ def solve_specs(paths: list[Path], fmt: str, method: str = "both") -> list[str]:
             errors += exc.errors
     if errors:
         raise SpecErrors(errors)
-    return [render(derive(system, method), fmt) for system in systems]
+    if fmt == "pdf":
+        from tutgen.render.pdf import find_latexmk
+
+        find_latexmk()  # no LaTeX: say so before the slow part
+    if template_dir is not None and not template_dir.is_dir():
+        raise UsageError(f"--template-dir {template_dir}: not a directory")
+    derivations = [derive(system, method) for system in systems]
+    return [render(d, fmt, template_dir) for d in derivations]
 
 
 def plan_outputs(specs: list[Path], output: str | Path, fmt: str, *, force: bool) -> list[Path]:
@@ -80,8 +99,9 @@ def _is_spec(target: Path, specs: list[Path]) -> bool:
     return any(spec.exists() and os.path.samefile(target, spec) for spec in specs)
 
 
-def write_outputs(targets: list[Path], texts: list[str]) -> None:
-    """Write each text through a temporary file and a rename, so no file is ever half-written."""
+def write_outputs(targets: list[Path], texts: list[str] | list[bytes] | list[str | bytes]) -> None:
+    """Write each text (or PDF's bytes) through a temporary file and a rename, so no file is ever
+    half-written."""
     umask = os.umask(0)
     os.umask(umask)
     for target, text in zip(targets, texts, strict=True):
@@ -91,10 +111,14 @@ def write_outputs(targets: list[Path], texts: list[str]) -> None:
         except OSError as err:
             raise UsageError(f"cannot write {target}: {err.strerror or err}") from None
         try:
-            with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
-                # mkstemp makes the file readable by its owner only; give it the usual permissions
-                os.fchmod(fh.fileno(), 0o666 & ~umask)
-                fh.write(text)
+            # mkstemp makes the file readable by its owner only; give it the usual permissions
+            os.fchmod(fd, 0o666 & ~umask)
+            if isinstance(text, bytes):
+                with os.fdopen(fd, "wb") as fb:
+                    fb.write(text)
+            else:
+                with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
+                    fh.write(text)
             os.replace(tmp, target)
         except BaseException as err:
             Path(tmp).unlink(missing_ok=True)

@@ -116,9 +116,9 @@ def test_python_m_tutgen_version(tmp_path: Path) -> None:
 
 
 def test_unknown_format_is_a_usage_error() -> None:
-    result = run("solve", P04, "--format", "pdf")
+    result = run("solve", P04, "--format", "docx")
     assert result.exit_code == EXIT_USAGE
-    assert "pdf" in result.stderr
+    assert "docx" in result.stderr
 
 
 # --- solve: stdout and files ---

@@ -13,6 +13,8 @@ from tutgen.cli.errors import handle_errors, stdout_write
 
 class Format(StrEnum):
     md = "md"
+    tex = "tex"
+    pdf = "pdf"
     json = "json"
 
 
@@ -47,21 +49,35 @@ def solve(
             "Lagrange always runs, as the reference Newton-Euler is checked against).",
         ),
     ] = Method.both,
+    template_dir: Annotated[
+        Path | None,
+        typer.Option(
+            "--template-dir",
+            metavar="DIR",
+            help="Your own Jinja templates (solution.md.j2, solution.tex.j2, blocks/…), searched before "
+            "the shipped ones and run sandboxed.",
+            show_default=False,
+        ),
+    ] = None,
 ) -> None:
-    """Derive the worked solution of each SPEC and write it as Markdown or JSON.
+    """Derive the worked solution of each SPEC and write it as Markdown, LaTeX, PDF or JSON.
 
     All specs are read and derived first; nothing is written unless every one succeeds.
     Existing files are overwritten only with --force, and never a spec itself.
+    A PDF is written only to a file: --format pdf needs -o.
     """
     from tutgen.api import plan_outputs, solve_specs, write_outputs
     from tutgen.errors import UsageError
 
+    if output is None and format is Format.pdf:
+        raise UsageError("--format pdf writes a file: add -o FILE.pdf (or -o DIR/)")
     if output is None and len(specs) > 1:
         raise UsageError("several specs need an output directory: add -o DIR")
     if output is not None:
         plan_outputs(specs, output, format.value, force=force)  # refuse early, before the slow part
-    texts = solve_specs(specs, format.value, method.value)
+    texts = solve_specs(specs, format.value, method.value, template_dir)
     if output is None:
+        assert isinstance(texts[0], str)
         stdout_write(texts[0])
         return
     write_outputs(plan_outputs(specs, output, format.value, force=force), texts)

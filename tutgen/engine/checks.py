@@ -149,10 +149,37 @@ def _equation_check(
     return True, f"'{name}': every term is {first[1] if first else expected}"
 
 
+def _bare_numbers(system: System) -> bool:
+    """True when a physical quantity of the spec is a plain number (a literal, or a value with a unit,
+    converted to SI): its dimension is lost, so a dimensional check of the equations would be wrong."""
+    values: list[object] = []
+    for body in system.bodies:
+        if body.position is not None:
+            values += list(body.position)
+        for part in body.parts:
+            values += [part.mass, part.density, *part.at]
+            for _, dim in part.dimensions:
+                values += list(dim) if isinstance(dim, tuple) else [dim]
+            if part.inertia is not None:
+                values += list(part.inertia)
+    for joint in system.joints:
+        values += [*joint.origin_offset, joint.offset]
+    for spring in system.springs:
+        values += [spring.stiffness, spring.free_length]
+    values += [d.coefficient for d in system.dampers]
+    for load in system.loads:
+        values += [*(load.force or ()), *(load.torque or ()), *load.at]
+    values += [v for _, v in system.generalized_forces]
+    values += list(system.gravity) if system.gravity is not None else []
+    return any(isinstance(v, sp.Expr) and v.is_number and v != 0 for v in values)
+
+
 def _dimension_results(system: System, derivation: Derivation) -> list[tuple[int, bool | None, str]]:
     eom = derivation.equations_of_motion
     if eom is None:
         return []
+    if _bare_numbers(system):
+        return [(i, None, "a quantity is a bare number") for i in range(len(system.coordinates))]
     dims = symbol_dimensions(system)
     return [(i, *_equation_check(c.name, eom[i], c.si_dimension, dims)) for i, c in enumerate(system.coordinates)]
 
@@ -173,7 +200,7 @@ def dimension_checks(system: System, derivation: Derivation) -> list[Check]:
     checked = [system.coordinates[i].name for i, ok, _ in results if ok]
     skipped = [system.coordinates[i].name for i, ok, _ in results if ok is None]
     if not checked:
-        return [Check(name, True, "not checked: the spec gives no units for some symbols of every equation")]
+        return [Check(name, True, "dimensions not checked: some quantities have no units, or are plain numbers")]
     detail = "every term agrees in the equations for " + ", ".join(f"'{c}'" for c in checked)
     if skipped:
         detail += "; not checked (symbols without units): " + ", ".join(f"'{c}'" for c in skipped)

@@ -1,0 +1,54 @@
+"""Golden files: every spec in specs/ rendered as Markdown and LaTeX, compared as exact text.
+
+Regenerate on purpose only, with ``pytest --update-golden``, and review the diff.
+"""
+
+from __future__ import annotations
+
+import difflib
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import ROOT, all_specs, solved
+
+GOLDEN = ROOT / "tests" / "golden"
+FORMATS = ["md", "tex"]
+
+
+def rendered(spec: Path, fmt: str) -> str:
+    from tutgen.api import render
+
+    out = render(solved(str(spec))[1], fmt)
+    assert isinstance(out, str)
+    return out
+
+
+@pytest.mark.parametrize("fmt", FORMATS)
+@pytest.mark.parametrize("spec", all_specs(), ids=lambda p: p.stem)
+def test_render_matches_golden(spec: Path, fmt: str, request: pytest.FixtureRequest) -> None:
+    golden = GOLDEN / f"{spec.stem}.{fmt}"
+    actual = rendered(spec, fmt)
+    if request.config.getoption("--update-golden"):
+        golden.parent.mkdir(parents=True, exist_ok=True)
+        golden.write_text(actual, encoding="utf-8", newline="\n")
+        return
+    assert golden.exists(), f"no golden file {golden.relative_to(ROOT)}; run pytest --update-golden"
+    expected = golden.read_text(encoding="utf-8")
+    if actual != expected:
+        diff = "".join(
+            difflib.unified_diff(
+                expected.splitlines(keepends=True),
+                actual.splitlines(keepends=True),
+                fromfile=f"golden/{golden.name}",
+                tofile="rendered",
+            )
+        )
+        pytest.fail(f"{golden.name} differs from the rendered output:\n{diff}", pytrace=False)
+
+
+def test_golden_files_have_a_spec() -> None:
+    """No stale golden file is left behind when a spec is renamed or removed."""
+    stems = {p.stem for p in all_specs()}
+    stale = sorted(p.name for p in GOLDEN.iterdir() if p.name.rsplit(".", 1)[0] not in stems)
+    assert stale == []

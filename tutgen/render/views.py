@@ -1,0 +1,427 @@
+"""Derivation -> a format-neutral template context of plain data.
+
+The context holds strings, lists and dicts only. Text is RAW (user or engine wording, not escaped);
+maths is LaTeX in the safe subset that KaTeX, MathJax and GitHub all render (``aligned``, ``bmatrix``,
+``\\boldsymbol``; no ``\\label``, no packages beyond amsmath). Each template escapes text with its own
+filter (``md_escape`` or ``latex_escape``) and lays out the maths.
+
+Blocks, the items of ``section.blocks``:
+
+- ``{"kind": "text", "parts": [...]}``: a paragraph; each part is ``{"kind": "text", "text": ...}``
+  (plain), ``{"kind": "strong", "text": ...}`` (bold) or ``{"kind": "math", "tex": ...}`` (inline maths);
+- ``{"kind": "subheading", "text": ...}``: a short bold lead-in, e.g. a body's name;
+- ``{"kind": "math", "tex": ..., "lines": [...]}``: displayed maths; ``lines`` are the equations of a
+  list ``a = …,\\quad b = …`` one by one, and ``stack`` is true when ``tex`` is too wide for one
+  line, for a template that then stacks them;
+- ``{"kind": "boxed", "tex": ..., "lines": [...]}``: a displayed final answer, set apart.
+
+``section.intro``, each item of ``given`` and of ``coordinates`` are lists of parts as above.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import sympy as sp
+
+from tutgen.engine.derivation import Derivation
+from tutgen.engine.newton_euler import PROJECTION_REMARK, NEMethod, NewtonEuler
+from tutgen.model.system import Ask, Coordinate
+from tutgen.render.latex import LINE_WIDTH, TexPrinter, visible_length
+
+Part = dict[str, str]
+Block = dict[str, Any]
+
+
+def text(s: str) -> Part:
+    return {"kind": "text", "text": s}
+
+
+def strong(s: str) -> Part:
+    return {"kind": "strong", "text": s}
+
+
+def math(tex: str) -> Part:
+    return {"kind": "math", "tex": tex}
+
+
+def prose(s: str) -> list[Part]:
+    """Engine wording with inline maths between single dollars -> parts."""
+    parts: list[Part] = []
+    for i, piece in enumerate(s.split("$")):
+        if piece:
+            parts.append(math(piece) if i % 2 else text(piece))
+    return parts
+
+
+def para(*parts: Part | list[Part]) -> Block:
+    flat: list[Part] = []
+    for p in parts:
+        flat += p if isinstance(p, list) else [p]
+    return {"kind": "text", "parts": flat}
+
+
+def split_list(tex: str) -> list[str]:
+    """The equations of a display written as a list ``a = 1,\\quad b = 2``, each on its own: a LaTeX
+    template may set them on separate lines (Markdown shows ``tex`` as one line)."""
+    lines: list[str] = []
+    depth, start, sep = 0, 0, ",\\quad "
+    i = 0
+    while i < len(tex):
+        ch = tex[i]
+        if ch == "\\" and tex.startswith(sep[1:], i) and depth == 0 and i > 0 and tex[i - 1] == ",":
+            lines.append(tex[start : i - 1])
+            i += len(sep) - 1
+            start = i
+            continue
+        if ch == "\\":
+            i += 2
+            continue
+        depth += {"{": 1, "}": -1}.get(ch, 0)
+        i += 1
+    lines.append(tex[start:])
+    return [ln.strip() for ln in lines]
+
+
+def display(tex: str, kind: str = "math") -> Block:
+    lines = split_list(tex)
+    return {"kind": kind, "tex": tex, "lines": lines, "stack": len(lines) > 1 and visible_length(tex) > LINE_WIDTH}
+
+
+def boxed(tex: str) -> Block:
+    return display(tex, "boxed")
+
+
+def subheading(s: str) -> Block:
+    return {"kind": "subheading", "text": s}
+
+
+def section(title: str, intro: str = "") -> dict[str, Any]:
+    return {"title": title, "intro": prose(intro), "blocks": []}
+
+
+def _chain(name: str, *forms: str) -> str:
+    """name = form1 = form2, without repeating a form that prints the same."""
+    shown: list[str] = []
+    for f in forms:
+        if f not in shown and f != name:
+            shown.append(f)
+    return " = ".join([name, *shown]) if shown else ""
+
+
+def _n(expr: Any) -> Any:
+    """A number as a float (the printer rounds it to 4 significant figures); a formula that still has
+    symbols stays exact, as a person writes it (m R^2/4, not 0.25 R^2 m)."""
+    if isinstance(expr, sp.MatrixBase):
+        return expr.applyfunc(_n)
+    expr = sp.sympify(expr)
+    return expr if expr.free_symbols else sp.N(expr)
+
+
+def _unit(unit: str) -> str:
+    return "\\ \\mathrm{" + unit.replace("_", "\\_").replace("%", "\\%") + "}"
+
+
+def solution_view(d: Derivation) -> dict[str, Any]:
+    """The template context for a worked solution."""
+    s = d.system
+    tex = TexPrinter(s)
+    num = d.numeric
+    sections: list[dict[str, Any]] = []
+
+    given: list[list[Part]] = []
+    for p in s.parameters:
+        if p.value is not None:
+            item = [math(f"{p.latex} = {tex(p.value)}{_unit(p.unit) if p.unit else ''}")]
+            if p.description:
+                item.append(text(f" ({p.description})"))
+        else:
+            item = [math(p.latex)]
+            if p.description:
+                item.append(text(f": {p.description}"))
+        given.append(item)
+    coords = [[math(c.latex)] + ([text(f": {c.description}")] if c.description else []) for c in s.coordinates]
+
+    if Ask.INERTIA in s.ask and d.inertia:
+        sec = section(
+            "Mass properties",
+            "Each part's inertia about its own centroid, then moved to the body "
+            "frame's origin by the parallel-axis theorem $J_O = J_G + m(|d|^2 E - d d^T)$.",
+        )
+        blocks = sec["blocks"]
+        for bi, principal in zip(d.inertia, d.principal, strict=True):
+            if s.coordinates and all(p.shape.value == "point" for p in bi.parts) and len(bi.parts) <= 1:
+                continue  # a lone point mass: its inertia is m r^2 in the energies, nothing to tabulate
+            for p in bi.parts:
+                blocks.append(subheading(f"{bi.name} / {p.name} ({p.shape.value.replace('_', ' ')})"))
+                chains = [_chain("m", tex(p.mass), tex(_n(num(p.mass))))]  # "m = m" says nothing: left out
+                if p.volume is not None:
+                    chains.insert(0, _chain("V", tex(p.volume), tex(_n(num(p.volume)))))
+                blocks += [display(c) for c in chains if c]
+                blocks.append(para(text("About its centroid:")))
+                blocks.append(display(f"J_G = {tex(_n(num(p.inertia_centroid)))}"))
+                if any(x != 0 for x in p.centroid):
+                    blocks.append(
+                        para(
+                            text("Centroid at "),
+                            math(f"d = {tex(_n(num(p.centroid).T))}"),
+                            text("; distances to the axes "),
+                            math(f"({', '.join(tex(_n(num(x))) for x in p.axis_distances)})"),
+                            text(":"),
+                        )
+                    )
+                    blocks.append(display(f"J_O = {tex(_n(num(p.inertia_origin)))}"))
+            blocks.append(subheading(f"{bi.name}, total mass and inertia about the origin:"))
+            total = [_chain("m", tex(_n(num(bi.mass)))), f"J_O = {tex(_n(num(bi.inertia_origin)))}"]
+            blocks.append(boxed(",\\quad ".join(t for t in total if t)))
+            if principal is not None:
+                moments = ",\\ ".join(tex(sp.Float(x)) for x in principal.moments)
+                blocks.append(para(text("Principal moments: "), math(moments), text(".")))
+        if blocks:
+            sections.append(sec)
+
+    if d.kinematics and d.kinetic_energy is not None:
+        sec = section("Kinematics", "Position and velocity of each centre of mass, in world axes.")
+        for k, e in zip(d.kinematics, d.energies, strict=True):
+            name = _tex_name(k.name)
+            sec["blocks"].append(
+                display(
+                    f"\\mathbf r_{{{name}}} = {tex(num(k.com))},\\quad "
+                    f"\\mathbf v_{{{name}}} = {tex(num(k.velocity))},\\quad "
+                    + tex.equation("v^2", num(e.speed_squared))
+                )
+            )
+        sections.append(sec)
+
+    if d.kinetic_energy is not None and (Ask.KINETIC_ENERGY in s.ask or Ask.EQUATIONS_OF_MOTION in s.ask):
+        intro = (
+            "The kinetic energy is given in the problem."
+            if s.kinetic_energy is not None
+            else "$T = \\sum \\tfrac12 m v_G^2 + \\tfrac12 \\omega^T J_G \\omega$ and "
+            "$U = -\\sum m\\,\\mathbf g\\cdot\\mathbf r_G$ plus the springs."
+        )
+        sec = section("Energies", intro)
+        blocks = sec["blocks"]
+        for e in d.energies:
+            blocks.append(display(tex.equation(f"T_{{{_tex_name(e.name)}}}", num(e.kinetic))))
+        only_t = Ask.EQUATIONS_OF_MOTION not in s.ask and Ask.KINETIC_ENERGY in s.ask
+        blocks.append((boxed if only_t else display)(tex.equation("T", num(d.kinetic_energy))))
+        if d.potential_energy is not None and Ask.POTENTIAL_ENERGY in s.ask:
+            blocks.append(display(tex.equation("U", num(d.potential_energy))))
+        if d.lagrangian is not None and Ask.LAGRANGIAN in s.ask:
+            blocks.append(display(tex.equation("L = T - U", num(d.lagrangian))))
+        sections.append(sec)
+
+    if d.lagrange_terms and Ask.LAGRANGE_EQUATIONS in s.ask and not (d.method == "newton-euler" and d.newton_euler):
+        sec = section(
+            "Lagrange's equations",
+            "For each coordinate, $\\frac{d}{dt}\\frac{\\partial L}{\\partial \\dot q_i} - "
+            "\\frac{\\partial L}{\\partial q_i} = Q_i$.",
+        )
+        for t, c in zip(d.lagrange_terms, s.coordinates, strict=True):
+            qd = tex(c.qd)
+            sec["blocks"].append(para(text("Coordinate "), math(c.latex), text(":")))
+            sec["blocks"].append(
+                display(
+                    f"\\begin{{aligned}}\\frac{{\\partial L}}{{\\partial {qd}}} &= {tex(num(t.dL_dqd))}\\\\ "
+                    f"\\frac{{d}}{{dt}}\\frac{{\\partial L}}{{\\partial {qd}}} &= {tex(num(t.ddt_dL_dqd))}\\\\ "
+                    f"\\frac{{\\partial L}}{{\\partial {c.latex}}} &= {tex(num(t.dL_dq))}\\\\ "
+                    f"Q_{{{c.latex}}} &= {tex(num(t.generalized_force))}\\end{{aligned}}"
+                )
+            )
+        sections.append(sec)
+
+    if d.equations_of_motion is not None and Ask.EQUATIONS_OF_MOTION in s.ask:
+        sec = section("Equations of motion")
+        for eq, force in zip(d.equations_of_motion, d.generalized_forces, strict=True):
+            lhs = num(eq + force)
+            sec["blocks"].append(boxed(tex.equation("", lhs, tex(num(force)))))
+        sections.append(sec)
+
+    if d.mass_matrix is not None and (Ask.MATRIX_FORM in s.ask or Ask.CHRISTOFFEL in s.ask):
+        sec = section(
+            "Matrix form",
+            "$H(q)\\ddot q + C(q,\\dot q) + G(q) = Q$, with $H$ read off "
+            "$T = \\tfrac12 \\dot q^T H \\dot q$ and $G = \\partial U/\\partial q$.",
+        )
+        sec["blocks"].append(display(f"H = {tex(num(d.mass_matrix))}"))
+        if Ask.MATRIX_FORM in s.ask:
+            sec["blocks"].append(
+                display(
+                    f"C = {tex(num(d.coriolis_vector))},\\quad G = {tex(num(d.gravity_vector))},"
+                    f"\\quad Q = {tex(num(d.generalized_forces))}"
+                )
+            )
+        sections.append(sec)
+
+    if d.christoffel and Ask.CHRISTOFFEL in s.ask:
+        sec = section(
+            "Christoffel symbols",
+            "In the tutorial's convention $h_{ijk} = \\partial H_{ij}/\\partial q_k - \\tfrac12 "
+            "\\partial H_{jk}/\\partial q_i$, with $C_i = \\sum_{j,k} h_{ijk}\\dot q_j \\dot q_k$; "
+            "the symmetric symbols of the first kind are $c_{ijk} = \\tfrac12(\\partial_k H_{ij} + "
+            "\\partial_j H_{ik} - \\partial_i H_{jk})$.",
+        )
+        blocks = sec["blocks"]
+        nonzero = [(k, v) for k, v in sorted(d.christoffel.items()) if v != 0]
+        if nonzero:
+            blocks.append(
+                display(",\\quad ".join(f"h_{{{i + 1}{j + 1}{k + 1}}} = {tex(num(v))}" for (i, j, k), v in nonzero))
+            )
+            blocks.append(para(prose("All other $h_{ijk}$ are zero.")))
+            first = [(k, v) for k, v in sorted(d.christoffel_first_kind.items()) if v != 0]
+            blocks.append(
+                display(",\\quad ".join(f"c_{{{i + 1}{j + 1}{k + 1}}} = {tex(num(v))}" for (i, j, k), v in first))
+            )
+        else:
+            blocks.append(para(prose("$H$ is constant, so every Christoffel symbol vanishes and $C = 0$.")))
+        sections.append(sec)
+
+    if d.newton_euler is not None and Ask.EQUATIONS_OF_MOTION in s.ask:
+        sections.append(_newton_euler_section(d.newton_euler, s.coordinates, tex, num))
+
+    return {
+        "title": s.title,
+        "statement": s.statement or "",
+        "given": given,
+        "coordinates": coords,
+        "sections": sections,
+        "remarks": list(d.remarks),
+        "checks": [
+            c.detail
+            if c.detail.startswith("dimensions not checked")
+            else f"{c.detail}: {'passed' if c.passed else 'FAILED'}"
+            for c in d.checks
+        ],
+    }
+
+
+_NE_INTRO = {
+    NEMethod.RECURSIVE: (
+        "Newton–Euler, recursively. Outward from the ground, link by link: "
+        "$\\omega_c = \\omega_p + z\\,\\dot q$, "
+        "$\\alpha_c = \\alpha_p + z\\,\\ddot q + \\omega_p \\times z\\,\\dot q$ for a revolute joint "
+        "(a prismatic one adds $z\\,\\ddot q + 2\\omega_p \\times z\\,\\dot q$ to the acceleration of the "
+        "origin), and $\\mathbf a_G = \\mathbf a_O + \\alpha \\times \\rho + \\omega \\times (\\omega \\times \\rho)$. "
+    ),
+    NEMethod.PER_BODY: (
+        "Newton–Euler, one free body at a time, with $\\mathbf a_G$ and $\\alpha$ from differentiating "
+        "$\\mathbf v_G$ and $\\omega$. "
+    ),
+    NEMethod.PROJECTION: (
+        "Newton–Euler without joints: the bodies are placed by positions and orientations, so the constraint "
+        "forces are not named. Each body's D'Alembert force and couple, with the applied forces, are projected "
+        "onto the partial velocities $\\partial \\mathbf v_G/\\partial \\dot q_i$ and "
+        "$\\partial \\omega/\\partial \\dot q_i$ (virtual work, Kane's method); the constraint forces "
+        "$\\mathbf F_c$, $\\mathbf M_c$ do no work and drop out."
+    ),
+}
+_NE_BALANCE = (
+    "Each body is in equilibrium under its applied forces, the joint reactions and D'Alembert's inertial "
+    "force $-m\\mathbf a_G$ and couple $-(I_G\\alpha + \\omega \\times I_G\\omega)$; "
+    "$\\mathbf R_j$, $\\mathbf N_j$ are the force and the moment (about the joint's origin) that the parent "
+    "exerts on the child at joint $j$. Solved from the tips inward, the reactions' components along the "
+    "joint axes are the equations of motion."
+)
+
+
+def _tex_name(name: str) -> str:
+    return "\\mathrm{" + name.replace("_", "\\_") + "}"
+
+
+def _nonzero(v: sp.MatrixBase) -> bool:
+    return any(e != 0 for e in v)
+
+
+def _tex_label(name: str) -> str:
+    """An applied load's name as a subscript: "load 'push'" -> \\text{push}."""
+    label = name.replace("'", "").removeprefix("load ")
+    return "\\text{" + label.replace("_", "\\_") + "}"
+
+
+def _newton_euler_section(
+    ne: NewtonEuler, coordinates: tuple[Coordinate, ...], tex: TexPrinter, num: Any
+) -> dict[str, Any]:
+    """Per body: motion, applied and inertial terms, the two balances; then reactions, equations and
+    the agreement with Lagrange's route."""
+    for r in ne.reactions:
+        for letter, unknown in (("R", r.unknown_force), ("N", r.unknown_moment)):
+            for axis, sym in zip("xyz", unknown, strict=True):
+                tex.names[sym] = f"{letter}_{{{_tex_name(r.joint)},{axis}}}"
+    intro = _NE_INTRO[ne.method]
+    if ne.method is not NEMethod.PROJECTION:
+        intro += _NE_BALANCE
+    sec = section("Newton–Euler", intro)
+    blocks = sec["blocks"]
+    motions = {m.body: m for m in ne.motions}
+    for b in ne.bodies:
+        name = _tex_name(b.body)
+        blocks.append(
+            para(
+                strong(b.body),
+                text(" (moments about "),
+                math("G") if b.about == "G" else text(b.about),
+                text("):"),
+            )
+        )
+        m = motions.get(b.body)
+        if m is not None:
+            blocks.append(
+                display(
+                    f"\\omega_{{{name}}} = {tex(num(m.angular_velocity))},\\quad "
+                    f"\\alpha_{{{name}}} = {tex(num(m.angular_acceleration))},\\quad "
+                    f"\\mathbf a_{{G,{name}}} = {tex(num(m.acceleration))}"
+                )
+            )
+        terms = [f"\\mathbf F_{{{_tex_label(ld.name)}}} = {tex(num(ld.force))}" for ld in b.loads if _nonzero(ld.force)]
+        terms += [
+            f"\\boldsymbol\\tau_{{{_tex_label(ld.name)}}} = {tex(num(ld.torque))}"
+            for ld in b.loads
+            if _nonzero(ld.torque)
+        ]
+        terms.append(f"-m\\mathbf a_G = {tex(num(b.inertial_force))}")
+        if _nonzero(b.inertial_moment):
+            terms.append(f"-(I_G\\alpha + \\omega\\times I_G\\omega) = {tex(num(b.inertial_moment))}")
+        blocks.append(display(",\\quad ".join(terms)))
+        if b.joint_in is None:  # no named reactions: what is left is balanced by the constraint forces
+            blocks.append(
+                display(
+                    f"\\textstyle\\sum \\mathbf F - m\\mathbf a_G = {tex(num(b.force_balance))} = -\\mathbf F_c,"
+                    f"\\quad \\sum \\mathbf M_G - (I_G\\alpha + \\omega\\times I_G\\omega) = "
+                    f"{tex(num(b.moment_balance))} = -\\mathbf M_c"
+                )
+            )
+        else:
+            blocks.append(
+                display(
+                    f"\\textstyle\\sum \\mathbf F = {tex(num(b.force_balance))} = \\mathbf 0,\\quad "
+                    f"\\sum \\mathbf M = {tex(num(b.moment_balance))} = \\mathbf 0"
+                )
+            )
+    if ne.reactions:
+        blocks.append(para(text("Joint reactions (parent on child, world components):")))
+        for r in ne.reactions:
+            j = _tex_name(r.joint)
+            blocks.append(
+                display(f"\\mathbf R_{{{j}}} = {tex(num(r.force))},\\quad \\mathbf N_{{{j}}} = {tex(num(r.moment))}")
+            )
+    blocks.append(para(text("The equation of each coordinate:")))
+    for e in ne.equations:
+        if e.joint is not None:
+            j = _tex_name(e.joint)
+            kind = next(r.kind for r in ne.reactions if r.joint == e.joint)
+            lhs = f"\\mathbf z_{{{j}}}\\cdot\\mathbf {'N' if kind.value == 'revolute' else 'R'}_{{{j}}}"
+            for k in e.subtracted:
+                lhs += f" - \\mathbf z_{{{j}}}\\cdot\\mathbf N_{{{_tex_name(k)}}}"
+        else:
+            qd = tex(next(c.qd for c in coordinates if c.name == e.coordinate))
+            lhs = (
+                f"\\textstyle\\sum_b \\big[(m\\mathbf a_G - \\mathbf F)\\cdot\\frac{{\\partial \\mathbf v}}"
+                f"{{\\partial {qd}}} + (I_G\\alpha + \\omega\\times I_G\\omega - \\mathbf M)\\cdot"
+                f"\\frac{{\\partial \\omega}}{{\\partial {qd}}}\\big]"
+            )
+        blocks.append(display(f"{lhs} = {tex(num(e.projection))} = {tex(num(e.generalized_force))}"))
+    blocks += [para(text(r)) for r in ne.remarks if r != PROJECTION_REMARK]  # the intro said it
+    if ne.agrees_with_lagrange:
+        blocks.append(para(text(ne.agreement.detail + ".")))
+    return sec
