@@ -90,3 +90,18 @@ def test_limits_expiry_raises_again_at_the_next_checkpoint() -> None:
 
 def test_limits_default_timeout() -> None:
     assert DEFAULT_TIMEOUT == 120
+
+
+def test_solve_timeout_option_stops_cleanly(tmp_path) -> None:
+    """`tutgen solve --timeout`: exit 4, the step it was at, no traceback, nothing written."""
+    from typer.testing import CliRunner
+
+    from tutgen.cli.main import app
+
+    spec = tmp_path / "chain7.yaml"
+    spec.write_text(spatial_chain(7), encoding="utf-8")
+    out = tmp_path / "out.json"
+    result = CliRunner().invoke(app, ["solve", str(spec), "--format", "json", "--timeout", "1", "-o", str(out)])
+    assert result.exit_code == 4, result.output
+    assert "it was at: " in result.stderr and "Traceback" not in result.stderr
+    assert not out.exists()

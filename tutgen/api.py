@@ -36,10 +36,15 @@ def render(derivation: object, fmt: str, template_dir: Path | None = None) -> st
 
 
 def solve_specs(
-    paths: list[Path], fmt: str, method: str = "both", template_dir: Path | None = None
+    paths: list[Path],
+    fmt: str,
+    method: str = "both",
+    template_dir: Path | None = None,
+    timeout: float | None = None,
 ) -> list[str | bytes]:
-    """Load every spec (reporting all their errors at once), derive each, render each."""
-    from tutgen.engine.lagrange import derive
+    """Load every spec (reporting all their errors at once), derive each (each within ``timeout``
+    seconds, None or 0 for no limit), render each."""
+    from tutgen.limits import derive_with_deadline
     from tutgen.spec.validate import load_system
 
     systems = []
@@ -57,7 +62,7 @@ def solve_specs(
         find_latexmk()  # no LaTeX: say so before the slow part
     if template_dir is not None and not template_dir.is_dir():
         raise UsageError(f"--template-dir {template_dir}: not a directory")
-    derivations = [derive(system, method) for system in systems]
+    derivations = [derive_with_deadline(system, method, timeout) for system in systems]
     return [render(d, fmt, template_dir) for d in derivations]
 
 

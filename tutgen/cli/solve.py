@@ -9,6 +9,7 @@ from typing import Annotated
 import typer
 
 from tutgen.cli.errors import handle_errors, stdout_write
+from tutgen.limits import DEFAULT_TIMEOUT
 
 
 class Format(StrEnum):
@@ -49,6 +50,15 @@ def solve(
             "Lagrange always runs, as the reference Newton-Euler is checked against).",
         ),
     ] = Method.both,
+    timeout: Annotated[
+        float,
+        typer.Option(
+            "--timeout",
+            metavar="SECONDS",
+            min=0,
+            help="Stop a derivation that takes longer than this, saying which step it was at (0: no limit).",
+        ),
+    ] = DEFAULT_TIMEOUT,
     template_dir: Annotated[
         Path | None,
         typer.Option(
@@ -75,7 +85,7 @@ def solve(
         raise UsageError("several specs need an output directory: add -o DIR")
     if output is not None:
         plan_outputs(specs, output, format.value, force=force)  # refuse early, before the slow part
-    texts = solve_specs(specs, format.value, method.value, template_dir)
+    texts = solve_specs(specs, format.value, method.value, template_dir, timeout=timeout)
     if output is None:
         assert isinstance(texts[0], str)
         stdout_write(texts[0])
