@@ -8,50 +8,17 @@ tutorial has a typo, tutgen must give the corrected value and must NOT give the 
 from __future__ import annotations
 
 import math
-from functools import cache
 from typing import Any
 
 import pytest
 import sympy as sp
-import yaml
 
-from tests.conftest import SEED, SPECS, solved
+from tests.conftest import SPECS, solved
+from tests.seed import ANSWERS, BODY_OF, SPEC_OF, problems
 from tutgen.engine.tidy import is_zero
 from tutgen.spec.expr import parse_expression
 
-ANSWERS = SEED / "answers.yaml"
-SPEC_OF = {
-    1: "p01-composite-inertia.yaml",
-    2: "p02-pivoted-rod.yaml",
-    3: "p03-cart-pendulum.yaml",
-    4: "p04-rp-arm.yaml",
-    5: "p05-rr-arm.yaml",
-    6: "p06-two-prismatic.yaml",
-    7: "p07-belt-driven-arm.yaml",
-    8: "p08-spatial-rr.yaml",
-    9: "p09-pr-manipulator.yaml",
-    10: "p10-given-kinetic-energy.yaml",
-}
-# the answer key's particle names -> the bodies of our specs
-BODY_OF = {
-    3: {"cart": "cart", "p": "pendulum"},
-    4: {"tip": "tip"},
-    5: {"m1": "link1", "m2": "link2"},
-    6: {"m1": "link1", "m2": "link2"},
-    7: {"m1": "link1", "m2": "link2"},
-    8: {"m1": "link1", "m2": "link2"},
-    9: {"m1": "slider", "m2": "link2"},
-}
-
 pytestmark = pytest.mark.skipif(not ANSWERS.exists(), reason=f"the seed answer key is not at {ANSWERS}")
-
-
-@cache
-def problems() -> dict[int, dict[str, Any]]:
-    if not ANSWERS.exists():  # collected anyway; every test here is skipped
-        return {}
-    data = yaml.safe_load(ANSWERS.read_text(encoding="utf-8"))
-    return {int(p["id"]): p for p in data["problems"]}
 
 
 def result(pid: int) -> tuple[Any, dict[str, Any]]:

@@ -9,36 +9,12 @@ the report entries at which `tutgen check` must flag the typos.
 
 from __future__ import annotations
 
-from functools import cache
 from typing import Any
 
-import yaml
+from tests.conftest import SPECS
+from tests.seed import ANSWERS as ANSWERS
+from tests.seed import BODY_OF, SPEC_OF, problems
 
-from tests.conftest import SEED, SPECS
-
-ANSWERS = SEED / "answers.yaml"
-SPEC_OF = {
-    1: "p01-composite-inertia.yaml",
-    2: "p02-pivoted-rod.yaml",
-    3: "p03-cart-pendulum.yaml",
-    4: "p04-rp-arm.yaml",
-    5: "p05-rr-arm.yaml",
-    6: "p06-two-prismatic.yaml",
-    7: "p07-belt-driven-arm.yaml",
-    8: "p08-spatial-rr.yaml",
-    9: "p09-pr-manipulator.yaml",
-    10: "p10-given-kinetic-energy.yaml",
-}
-# the answer key's particle names -> the bodies of our specs
-BODY_OF = {
-    3: {"cart": "cart", "p": "pendulum"},
-    4: {"tip": "tip"},
-    5: {"m1": "link1", "m2": "link2"},
-    6: {"m1": "link1", "m2": "link2"},
-    7: {"m1": "link1", "m2": "link2"},
-    8: {"m1": "link1", "m2": "link2"},
-    9: {"m1": "slider", "m2": "link2"},
-}
 RESULT_OF = {
     "T": "kinetic_energy",
     "U": "potential_energy",
@@ -90,12 +66,6 @@ TYPO_ENTRY = {
     (7, "velocity.m2.0"): "velocities.link2[1]",
     (8, "C.0"): "coriolis_vector[1]",
 }
-
-
-@cache
-def problems() -> dict[int, dict[str, Any]]:
-    data = yaml.safe_load(ANSWERS.read_text(encoding="utf-8"))
-    return {int(p["id"]): p for p in data["problems"]}
 
 
 def spec_path(pid: int) -> str:

@@ -8,12 +8,10 @@ spec, from the spec's joints.
 
 from __future__ import annotations
 
-from functools import cache
 from typing import Any
 
 import pytest
 import sympy as sp
-import yaml
 from sympy.physics.mechanics import (
     KanesMethod,
     LagrangesMethod,
@@ -23,28 +21,13 @@ from sympy.physics.mechanics import (
     dynamicsymbols,
 )
 
-from tests.conftest import SEED, SPECS, solved
+from tests.conftest import SPECS, solved
+from tests.seed import ANSWERS, problems
+from tests.seed import SPEC_OF as ALL_SPECS
 from tutgen.engine.tidy import is_zero
 from tutgen.spec.expr import parse_expression
 
-ANSWERS = SEED / "answers.yaml"
-SPEC_OF = {
-    3: "p03-cart-pendulum.yaml",
-    4: "p04-rp-arm.yaml",
-    5: "p05-rr-arm.yaml",
-    6: "p06-two-prismatic.yaml",
-    7: "p07-belt-driven-arm.yaml",
-    8: "p08-spatial-rr.yaml",
-    9: "p09-pr-manipulator.yaml",
-}
-
-
-@cache
-def problems() -> dict[int, dict[str, Any]]:
-    if not ANSWERS.exists():
-        return {}
-    data = yaml.safe_load(ANSWERS.read_text(encoding="utf-8"))
-    return {int(p["id"]): p for p in data["problems"]}
+SPEC_OF = {pid: name for pid, name in ALL_SPECS.items() if 3 <= pid <= 9}  # the multi-DOF point-mass problems
 
 
 def _back_to_symbols(expr: Any, qs: list[Any], system: Any) -> Any:
