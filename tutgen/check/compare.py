@@ -23,7 +23,6 @@ term, or the coefficient of a term in the coordinates and rates.
 from __future__ import annotations
 
 import math
-import random
 import re
 import weakref
 from collections.abc import Iterable, Iterator, Mapping
@@ -44,8 +43,10 @@ from tutgen.check.answers import (
     is_tolerance_form,
     item_tolerance,
 )
+from tutgen.engine.tidy import random_states as tidy_random_states
 from tutgen.engine.tidy import trig_reduce
 from tutgen.errors import SpecError, SpecErrors
+from tutgen.render.jsonout import expr_text  # the spec grammar, as the JSON writes it
 from tutgen.spec.expr import ExprError, did_you_mean, number_to_rational, parse_expression
 from tutgen.spec.loader import KeyPath
 from tutgen.spec.units import Dimension, parse_quantity, parse_unit
@@ -252,17 +253,9 @@ def _per_coordinate(path: Path) -> bool:
 # ---------------------------------------------------------------------------------------------
 
 
-def expr_text(expr: sp.Expr) -> str:
-    """An expression in the spec grammar, as tutgen's JSON writes it."""
-    return sp.sstr(expr, order="lex")
-
-
 def random_states(symbols: Iterable[sp.Symbol]) -> Iterator[dict[sp.Symbol, sp.Expr]]:
     """TRIALS states, the same for the same symbols: each symbol a random k/1000 in [0.3, 2.7]."""
-    free = sorted(symbols, key=lambda s: s.name)
-    rng = random.Random(SEED)
-    for _ in range(TRIALS):
-        yield {s: sp.Rational(rng.randint(300, 2700), 1000) for s in free}
+    return tidy_random_states(symbols, TRIALS, SEED)
 
 
 def _value(expr: sp.Expr, state: Mapping[sp.Symbol, sp.Expr]) -> complex | None:
@@ -276,8 +269,8 @@ def _value(expr: sp.Expr, state: Mapping[sp.Symbol, sp.Expr]) -> complex | None:
 
 def vanishes_at_states(expr: sp.Expr) -> bool:
     """Whether ``expr`` is 0 (to 1e-9 of the size of its terms) at the random states where it is finite,
-    and finite at most of them. (Like :func:`tutgen.engine.tidy.numerically_zero`, but a state at a pole
-    of the expression is skipped instead of failing.)"""
+    and finite at most of them. (Unlike :func:`tutgen.engine.tidy.numerically_zero`, which draws more states
+    until enough are finite, a report needs the fixed TRIALS states it names.)"""
     terms = sp.Add.make_args(expr)
     finite = 0
     for state in random_states(expr.free_symbols):

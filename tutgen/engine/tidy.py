@@ -7,7 +7,7 @@ H, one term of T), so cost stays proportional to the size of the result.
 from __future__ import annotations
 
 import random
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 
 import sympy as sp
 from sympy.simplify.fu import TR8
@@ -73,19 +73,24 @@ def trig_reduce(expr: sp.Expr) -> sp.Expr:
     return out
 
 
+def random_states(symbols: Iterable[sp.Symbol], count: int, seed: int = 4245) -> Iterator[dict[sp.Symbol, sp.Expr]]:
+    """``count`` states, the same for the same symbols and seed: each symbol a random k/1000 in [0.3, 2.7]."""
+    free = sorted(symbols, key=lambda s: s.name)
+    rng = random.Random(seed)
+    for _ in range(count):
+        yield {s: sp.Rational(rng.randint(300, 2700), 1000) for s in free}
+
+
 def numerically_zero(expr: sp.Expr, trials: int = 8, seed: int = 4245) -> bool:
     """True when the expression vanishes (to 1e-9, relatively) at random points in (0.3, 2.7).
 
     Deterministic: a fixed seed, evaluated with sympy's own arbitrary-precision evaluation. A point
     where the expression is not finite (a pole) is skipped; with no usable point the answer is False.
     """
-    free = sorted(expr.free_symbols, key=lambda s: s.name)
-    rng = random.Random(seed)
     used = 0
-    for _ in range(4 * trials):
+    for point in random_states(expr.free_symbols, 4 * trials, seed):
         if used == trials:
             break
-        point = {s: sp.Rational(rng.randint(300, 2700), 1000) for s in free}
         value = sp.N(expr.subs(point), 30)
         if not value.is_number or value.has(sp.zoo, sp.oo, sp.nan, -sp.oo):
             continue
