@@ -229,7 +229,7 @@ def typo_cases() -> list[Any]:
     return [
         pytest.param(pid, typo, id=f"p{pid}-{typo['answer_key']}")
         for pid in range(3, 11)
-        for typo in problems()[pid].get("typos", [])
+        for typo in problems().get(pid, {}).get("typos", [])
     ]
 
 
