@@ -29,7 +29,8 @@ def pytest_addoption(parser: pytest.Parser) -> None:
 
 
 def all_specs() -> list[Path]:
-    return sorted(SPECS.rglob("*.yaml"))
+    """Every problem spec under specs/ (tutorial sheets, ``*sheet*.yaml``, are not problem specs)."""
+    return sorted(p for p in SPECS.rglob("*.yaml") if "sheet" not in p.stem)
 
 
 @cache

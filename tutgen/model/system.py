@@ -133,6 +133,18 @@ class Joint:
     offset: sp.Expr
     absolute: bool
     origin: Location
+    # a motor driving this joint through a gearbox: rotor inertia J_m about its own axis and gear
+    # ratio n (joint speed = rotor speed / n); it adds the reflected inertia n^2 J_m to H_ii of the
+    # joint's coordinate (the rotor's gyroscopic coupling with the links is neglected, as in Spong)
+    rotor_inertia: sp.Expr | None = None
+    gear_ratio: sp.Expr | None = None
+
+    @property
+    def reflected_inertia(self) -> sp.Expr | None:
+        if self.rotor_inertia is None:
+            return None
+        n = self.gear_ratio if self.gear_ratio is not None else sp.Integer(1)
+        return n**2 * self.rotor_inertia
 
 
 @dataclass(frozen=True)
