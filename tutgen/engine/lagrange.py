@@ -44,6 +44,11 @@ def derive(system: System, method: str = "both") -> Derivation:
     principal = tuple(principal_axes(system_subs(system, bi.inertia_origin)) for bi in inertia)
     if not system.coordinates:
         return Derivation(system=system, inertia=inertia, principal=principal)
+    # serial arms of LARGE (4) or more coordinates: the fast route of tutgen/engine/serial.py (issue 8)
+    from tutgen.engine.serial import derive_serial, is_large_serial_chain
+
+    if is_large_serial_chain(system):
+        return derive_serial(system, method, inertia, principal)
 
     q = [c.q for c in system.coordinates]
     qd = [c.qd for c in system.coordinates]
@@ -99,6 +104,12 @@ def derive(system: System, method: str = "both") -> Derivation:
             t_rot = tidy_rates((qd_vec.T * h_rot * qd_vec)[0] / 2, qd)
             u_total += grav
             energies.append(BodyEnergy(bi.name, v2, t_trans, t_rot, tidy_rates(t_trans + t_rot, qd), grav))
+        # motor rotors: each adds its reflected inertia n^2 J_m to H_ii, i.e. n^2 J_m q_dot_i^2 / 2 to T
+        # (so L, and Lagrange's equation term by term, carry it too)
+        for i, reflected in _rotors(system):
+            h = sp.Matrix(h)
+            h[i, i] += reflected
+            remarks.append(_rotor_remark(system, i, reflected))
         h = h.applyfunc(tidy)
         t_total = tidy_rates((qd_vec.T * h * qd_vec)[0] / 2, qd)
         bodies_kin = tuple(kin.bodies[b.name] for b in system.bodies)
@@ -221,6 +232,42 @@ def _rotational_block(inertia: sp.MatrixBase, rotation: sp.MatrixBase, jw: sp.Ma
         return sp.zeros(n, n)
     jw_body = (sp.Matrix(rotation).T * sp.Matrix(jw)).applyfunc(tidy)
     return (jw_body.T * sp.Matrix(inertia) * jw_body).applyfunc(tidy)
+
+
+def _rotors(system: System) -> list[tuple[int, sp.Expr]]:
+    """(index of the coordinate, reflected inertia n^2 J_m) for every joint driven by a motor's rotor.
+
+    Only the reflected inertia is modelled: the rotor spins at n q_dot_i about its own axis, so its
+    kinetic energy is J_m (n q_dot_i)^2 / 2; its gyroscopic coupling with the links (and its own mass,
+    part of the link's) are neglected, as in Spong's and Craig's arm models."""
+    index = {c.name: i for i, c in enumerate(system.coordinates)}
+    out = []
+    for joint in system.joints:
+        reflected = joint.reflected_inertia
+        if reflected is not None and joint.coordinate is not None:
+            out.append((index[joint.coordinate.name], reflected))
+    return out
+
+
+def _rotor_remark(system: System, i: int, reflected: sp.Expr) -> str:
+    coord = system.coordinates[i]
+    joint = next(j for j in system.joints if j.coordinate is not None and j.coordinate.name == coord.name)
+
+    def show(e: sp.Expr) -> str:
+        """A symbolic value as written; a number that is not whole to 6 significant digits."""
+        return f"{float(e):.6g}" if e.is_number and not e.is_Integer else sp.sstr(e)
+
+    value = system_subs(system, sp.Matrix([reflected]))[0]
+    shown = show(reflected) + (f" = {show(value)}" if value != reflected and not reflected.is_number else "")
+    k = i + 1
+    entry = f"H_{k}{k}" if k < 10 else f"H_{k},{k}"
+    ratio = f"gear ratio n = {show(joint.gear_ratio)}" if joint.gear_ratio is not None else "no gearbox, n = 1"
+    return (
+        f"Joint '{joint.name}' is driven by a motor ({ratio}) whose rotor has the inertia "
+        f"J_m = {show(joint.rotor_inertia)}: it adds the reflected inertia n^2 J_m = {shown} to {entry}, "
+        f"that is n^2 J_m {coord.name}_dot^2 / 2 to T (the rotor's gyroscopic coupling with the links is "
+        "neglected)."
+    )
 
 
 def _length_between(element: Spring | Damper, kin: Kinematics | None) -> sp.Expr:

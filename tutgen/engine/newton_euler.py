@@ -499,6 +499,18 @@ class _Builder:
                 rate = sum((sp.diff(damper.extension, qj) * qdj for qj, qdj in zip(q, qd, strict=True)), sp.Integer(0))
                 dissipation = damper.coefficient * rate**2 / 2
                 out = [o - sp.diff(dissipation, qdi) for o, qdi in zip(out, qd, strict=True)]
+        # a motor's rotor takes n^2 J_m q_ddot_i of the drive's effort to accelerate itself (its reflected
+        # inertia): the link receives Q_i - n^2 J_m q_ddot_i through the joint (gyroscopic terms neglected)
+        for joint in system.joints:
+            reflected = joint.reflected_inertia
+            if reflected is not None and joint.coordinate is not None:
+                i = names.index(joint.coordinate.name)
+                out[i] -= reflected * joint.coordinate.qdd
+                self.remarks.append(
+                    f"The rotor of the motor at joint '{joint.name}' is accelerated by part of the drive's effort: "
+                    f"the link receives Q - n^2 J_m {joint.coordinate.name}_ddot through the joint (n^2 J_m = "
+                    f"{f'{float(reflected):.6g}' if reflected.is_number else sp.sstr(reflected)})."
+                )
         return [self.tidy(o) for o in out]
 
     # -- the derivation --------------------------------------------------------------------

@@ -1,0 +1,822 @@
+"""H(q), C(q, q_dot) q_dot and G(q) of serial arms, fast enough for a fully symbolic 6-DOF arm.
+
+The general route (:mod:`tutgen.engine.lagrange`) works in world components and tidies every entry
+with trigonometric identities, which is right for a worked solution of two or three coordinates but
+grows too fast beyond. Here, for a chain of revolute, prismatic and fixed joints from the ground:
+
+- Every velocity Jacobian is kept in the link's own axes and propagated joint by joint, as in the
+  velocity pass of recursive Newton-Euler: ``^c J = ^cR_p (^p J_v + ^p J_w x lever)``. ``^cR_p``
+  depends on the joint's own coordinate only, so no product R I R^T is ever formed and the link
+  inertia (given about the centre of mass in body axes) is used as given:
+  H = sum_i m_i J_vi^T J_vi + J_wi^T I_i J_wi (+ the reflected rotor inertia n^2 J_m on H_ii).
+- Gravity is carried into each link's axes the same way (``^c g = ^cR_p ^p g``), so
+  U = -sum m g . r_c is a scalar per link and G = dU/dq exactly.
+- Every quantity is a :class:`~tutgen.engine.trigpoly.TrigPoly`: canonical, so sin^2 + cos^2 = 1
+  and every cancellation happens by construction, with no ``simplify``; derivatives are exact, so
+  the Christoffel symbols Gamma_ijk = (dH_ij/dq_k + dH_ik/dq_j - dH_jk/dq_i) / 2 are cheap.
+- sympy is only the output layer: each entry is converted once, its coefficients grouped by a
+  greedy Horner scheme (``TrigAlgebra.coefficient_expr``) and assembled without sympy's flatten.
+  The symbols Gamma_ijk (j <= k) are converted once and C q_dot and C are written from them.
+
+The tutorial's table h_ijk is converted on first use (``functools.cached_property``): a 6-DOF arm
+has about two hundred of them, and H, C q_dot, G are what a simulation needs.
+
+What it costs (2 shared cores, sympy 1.14, pure-Python coefficients): a fully symbolic PUMA-like 6R
+arm (every mass, centre of mass and inertia entry a symbol) about 3 s for H, C q_dot and G with
+H at 37k operations (KanesMethod, unsimplified: 5 s and 41k in the same run); a planar 3R arm of
+point masses 11 ms, 4R 28 ms (Kane + trigsimp: 1.1 s and 6.7 s, with larger H); planar 10R 1 s.
+About half of the 6-DOF time is building the sympy output (C q_dot alone is 140k operations).
+"""
+
+from __future__ import annotations
+
+import math
+import random
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import sympy as sp
+
+from tutgen.engine.derivation import Derivation
+from tutgen.engine.inertia import BodyInertia, Principal, body_inertia
+from tutgen.engine.trigpoly import TrigAlgebra, TrigPoly, monomial_times_sum
+from tutgen.model.system import GROUND, Joint, JointKind, System
+
+__all__ = [
+    "SerialDynamics",
+    "cse_form",
+    "derive_serial",
+    "is_large_serial_chain",
+    "is_serial_chain",
+    "numeric_checks",
+    "numeric_inverse_dynamics",
+    "serial_dynamics",
+]
+
+Vec3 = list[TrigPoly]
+Mat3 = list[list[TrigPoly]]
+
+
+def is_serial_chain(system: System) -> bool:
+    """True when every body hangs from the ground by a chain of revolute, prismatic and fixed joints
+    with relative angles, each moving joint driving its own coordinate and every coordinate driven
+    by a joint (no bodies placed by ``position``/``orientation``, no given energy).
+
+    A kinematic tree (a fixed tool on a link, two branches) is accepted too: each body's Jacobians
+    come from its parent's alone, so the propagation is the same.
+    """
+    if system.kinetic_energy is not None or system.potential_energy is not None:
+        return False
+    if not system.bodies or not system.coordinates:
+        return False
+    by_child = {j.child: j for j in system.joints}
+    if any(b.name not in by_child for b in system.bodies):
+        return False
+    if any(b.position is not None or b.rotation is not None or b.rotation_rates for b in system.bodies):
+        return False
+    driven: list[sp.Symbol] = []
+    for j in system.joints:
+        if j.absolute or j.kind not in (JointKind.REVOLUTE, JointKind.PRISMATIC, JointKind.FIXED):
+            return False
+        if j.kind is JointKind.FIXED:
+            if j.coordinate is not None:
+                return False
+            continue
+        if j.coordinate is None:
+            return False
+        driven.append(j.coordinate.q)
+    coords = [c.q for c in system.coordinates]
+    if sorted(driven, key=str) != sorted(coords, key=str) or len(set(driven)) != len(driven):
+        return False
+    # every chain reaches the ground (validate.py rejects loops; a body placed without a joint would
+    # have been caught above)
+    names = {b.name for b in system.bodies}
+    return all(j.parent == GROUND or j.parent in names for j in system.joints)
+
+
+@dataclass(frozen=True)
+class _Exact:
+    """The exact results, kept for the Christoffel symbols, C and the checks."""
+
+    algebra: TrigAlgebra
+    h: list[list[TrigPoly]]  # full n x n
+    dh: list[list[list[TrigPoly]]]  # dh[i][j][k] = dH_ij / dq_k
+    gammas: dict[tuple[int, int, int], TrigPoly]  # Gamma_ijk for j <= k, nonzero only
+    g: list[TrigPoly]
+    u: TrigPoly
+
+
+@dataclass(frozen=True)
+class SerialDynamics:
+    """H q_ddot + C(q, q_dot) q_dot + G(q) of a serial arm, as sympy matrices.
+
+    ``christoffel`` uses the tutorial's convention (as :attr:`Derivation.christoffel`):
+    h_ijk = dH_ij/dq_k - dH_jk/dq_i / 2, so C_i = sum_jk h_ijk q_dot_j q_dot_k; ``christoffel_first_kind``
+    is the symmetric Gamma_ijk = (dH_ij/dq_k + dH_ik/dq_j - dH_jk/dq_i) / 2, and ``coriolis_matrix``
+    C_ij = sum_k Gamma_ijk q_dot_k, so that H_dot - 2 C is skew. Only nonzero symbols are listed.
+    """
+
+    coordinates: tuple[sp.Symbol, ...]
+    rates: tuple[sp.Symbol, ...]
+    mass_matrix: sp.ImmutableMatrix
+    coriolis_vector: sp.ImmutableMatrix
+    gravity_vector: sp.ImmutableMatrix
+    potential_energy: sp.Expr  # of gravity
+    # Gamma_ijk (both orders of j, k: the same object), nonzero only; C q_dot and C are built from it
+    christoffel_first_kind: dict[tuple[int, int, int], sp.Expr]
+    timings: tuple[tuple[str, float], ...]
+    exact: _Exact = field(repr=False, compare=False)
+
+    @cached_property
+    def christoffel(self) -> dict[tuple[int, int, int], sp.Expr]:
+        n = len(self.coordinates)
+        dh = self.exact.dh
+        half = self.exact.algebra.ring.ground_new(self.exact.algebra.ring.domain(1, 2))
+        out: dict[tuple[int, int, int], sp.Expr] = {}
+        for i in range(n):
+            for j in range(n):
+                for k in range(n):
+                    h = dh[i][j][k] - dh[j][k][i].scale(half)
+                    if h:
+                        out[(i, j, k)] = h.to_expr()
+        return out
+
+    @cached_property
+    def coriolis_matrix(self) -> sp.ImmutableMatrix:
+        """C_ij = sum_k Gamma_ijk q_dot_k, assembled from the converted symbols (no new conversion)."""
+        n = len(self.coordinates)
+        gam = self.christoffel_first_kind
+        return sp.ImmutableMatrix(
+            n,
+            n,
+            lambda i, j: monomial_times_sum(
+                [(gam[(i, j, k)], 1, (self.rates[k],)) for k in range(n) if (i, j, k) in gam]
+            ),
+        )
+
+
+def _coriolis_matrix(ex: _Exact) -> list[list[TrigPoly]]:
+    """C_ij = sum_k Gamma_ijk q_dot_k, exactly (for :func:`skew_check`)."""
+    alg = ex.algebra
+    n = len(ex.h)
+    dh = ex.dh
+    half = alg.ring.ground_new(alg.ring.domain(1, 2))
+    qd = [alg.rate(s) for s in alg.rates]
+    out = []
+    for i in range(n):
+        row = []
+        for j in range(n):
+            acc = alg.zero
+            for k in range(n):
+                gam = dh[i][j][k] + dh[i][k][j] - dh[j][k][i]
+                acc = acc + gam.scale(qd[k])
+            row.append(acc.scale(half))
+        out.append(row)
+    return out
+
+
+# ---------------------------------------------------------------------------------------------
+# The derivation
+# ---------------------------------------------------------------------------------------------
+
+
+def _constants(system: System) -> list[sp.Expr]:
+    """Every constant that enters the coefficients, so the algebra knows its generators up front."""
+    out: list[sp.Expr] = []
+    for body in system.bodies:
+        bi = body_inertia(body)
+        out += [bi.mass, *bi.com, *bi.inertia_com]
+        for part in bi.parts:
+            out += [part.mass, *part.centroid, *part.inertia_centroid]
+    for j in system.joints:
+        out += [*j.origin_offset, *j.rotation, *j.axis, j.offset, sp.cos(j.offset), sp.sin(j.offset)]
+        if j.reflected_inertia is not None:
+            out.append(j.reflected_inertia)
+    if system.gravity is not None:
+        out += list(system.gravity)
+    return [sp.sympify(e) for e in out]
+
+
+def _rotation_transpose(alg: TrigAlgebra, joint: Joint, index: int | None) -> Mat3:
+    """^cR_p = (F Rot(a, q + offset))^T, the parent's axes seen from the child, F the fixed rotation."""
+    coef = alg.coefficient
+    f = sp.Matrix(joint.rotation)
+    ft = [[alg.const(f[k, i]) for k in range(3)] for i in range(3)]  # ft[i][k] = F[k, i]
+    if joint.kind is not JointKind.REVOLUTE or index is None:
+        return ft if f != sp.eye(3) else _identity(alg)
+    a = [coef(x) for x in joint.axis]
+    cq, sq = alg.cos(index), alg.sin(index)
+    off = sp.sympify(joint.offset)
+    if off != 0:
+        co, so = coef(sp.cos(off)), coef(sp.sin(off))
+        cq, sq = cq.scale(co) - sq.scale(so), sq.scale(co) + cq.scale(so)
+    one = alg.ring.one
+    skew = [[0 * one, -a[2], a[1]], [a[2], 0 * one, -a[0]], [-a[1], a[0], 0 * one]]
+    # Rot = a a^T + cos (E - a a^T) + sin [a]x;  Rot^T has -[a]x
+    rt = [
+        [
+            TrigPoly(alg, {(alg.zero_k, 0): a[i] * a[k]} if a[i] * a[k] else {})
+            + cq.scale((one if i == k else 0 * one) - a[i] * a[k])
+            - sq.scale(skew[i][k])
+            for k in range(3)
+        ]
+        for i in range(3)
+    ]
+    if f == sp.eye(3):
+        return rt
+    return _matmul(rt, ft)
+
+
+def _identity(alg: TrigAlgebra) -> Mat3:
+    return [[alg.one if i == k else alg.zero for k in range(3)] for i in range(3)]
+
+
+def _matmul(a: Mat3, b: Mat3) -> Mat3:
+    return [[_sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+
+
+def _sum(items: object) -> TrigPoly:
+    it = iter(items)  # type: ignore[call-overload]
+    acc = next(it)
+    for x in it:
+        acc = acc + x
+    return acc
+
+
+def _apply(r: Mat3, v: Vec3) -> Vec3:
+    out = []
+    for i in range(3):
+        acc = None
+        for k in range(3):
+            if r[i][k] and v[k]:
+                t = r[i][k] * v[k]
+                acc = t if acc is None else acc + t
+        out.append(acc if acc is not None else v[0].algebra.zero)
+    return out
+
+
+def _cross(a: Vec3, b: Vec3) -> Vec3:
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def _dot(a: Vec3, b: Vec3) -> TrigPoly:
+    acc = None
+    for x, y in zip(a, b, strict=True):
+        if x and y:
+            t = x * y
+            acc = t if acc is None else acc + t
+    return acc if acc is not None else a[0].algebra.zero
+
+
+def _add(a: Vec3, b: Vec3) -> Vec3:
+    return [x + y for x, y in zip(a, b, strict=True)]
+
+
+def serial_dynamics(system: System) -> SerialDynamics:
+    """H, C(q, q_dot) q_dot and G of a serial chain (see :func:`is_serial_chain`), exactly.
+
+    Examples
+    ========
+    >>> from tutgen.spec.validate import load_system_text
+    >>> arm = load_system_text('''
+    ... tutgen: 1
+    ... title: two links
+    ... parameters: [m1, m2, l1, l2, g]
+    ... coordinates: [t1, t2]
+    ... gravity: [0, -g, 0]
+    ... bodies: {a: {mass: m1, com: [l1, 0, 0]}, b: {mass: m2, com: [l2, 0, 0]}}
+    ... joints:
+    ...   j1: {type: revolute, parent: ground, child: a, coordinate: t1}
+    ...   j2: {type: revolute, parent: a, child: b, origin: [l1, 0, 0], coordinate: t2}
+    ... ''')
+    >>> serial_dynamics(arm).mass_matrix[0, 1]
+    l1*l2*m2*cos(t2) + l2**2*m2
+    """
+    start = time.perf_counter()
+    coords = [c.q for c in system.coordinates]
+    rates = tuple(c.qd for c in system.coordinates)
+    n = len(coords)
+    index = {c.q: i for i, c in enumerate(system.coordinates)}
+    by_child = {j.child: j for j in system.joints}
+    revolute = [False] * n
+    for j in system.joints:
+        if j.coordinate is not None:
+            revolute[index[j.coordinate.q]] = j.kind is JointKind.REVOLUTE
+    alg = TrigAlgebra(coords, revolute, _constants(system), rates)
+    const = alg.const
+    zero = alg.zero
+
+    # link-frame quantities, parents first: Jacobians of the frame origin (jv) and of the angular
+    # velocity (jw), column by coordinate index; the origin's position and gravity in link axes
+    gravity = list(system.gravity) if system.gravity is not None else [0, 0, 0]
+    jv: dict[str, dict[int, Vec3]] = {GROUND: {}}
+    jw: dict[str, dict[int, Vec3]] = {GROUND: {}}
+    pos: dict[str, Vec3] = {GROUND: [zero, zero, zero]}
+    grav: dict[str, Vec3] = {GROUND: [const(x) for x in gravity]}
+    has_gravity = any(sp.sympify(x) != 0 for x in gravity)
+
+    def place(name: str) -> None:
+        if name in jv:
+            return
+        joint = by_child[name]
+        place(joint.parent)
+        k = index[joint.coordinate.q] if joint.coordinate is not None else None
+        rt = _rotation_transpose(alg, joint, k)
+        lever = [const(x) for x in joint.origin_offset]
+        axis_c = [const(x) for x in joint.axis]  # the joint axis in the child's axes
+        if joint.kind is JointKind.PRISMATIC and k is not None:
+            f = sp.Matrix(joint.rotation)
+            slide = TrigPoly(alg, {(alg.zero_k, 0): alg.coefficient(coords[k]) + alg.coefficient(joint.offset)})
+            direction = [const(x) for x in (f * sp.Matrix(joint.axis))]
+            lever = [lv + d * slide for lv, d in zip(lever, direction, strict=True)]
+        pjv, pjw = jv[joint.parent], jw[joint.parent]
+        cjv: dict[int, Vec3] = {}
+        cjw: dict[int, Vec3] = {}
+        for col in pjw:
+            cjw[col] = _apply(rt, pjw[col])
+            cjv[col] = _apply(rt, _add(pjv[col], _cross(pjw[col], lever)))
+        if k is not None:
+            if joint.kind is JointKind.REVOLUTE:
+                cjw[k] = axis_c
+                cjv[k] = [zero, zero, zero]
+            else:
+                cjv[k] = axis_c
+                cjw[k] = [zero, zero, zero]
+        jv[name], jw[name] = cjv, cjw
+        pos[name] = _apply(rt, _add(pos[joint.parent], lever))
+        grav[name] = _apply(rt, grav[joint.parent]) if has_gravity else [zero, zero, zero]
+
+    for body in system.bodies:
+        place(body.name)
+    t_kin = time.perf_counter()
+
+    # H = sum over bodies: translation of each mass element + rotation about the centre of mass
+    h = [[zero] * n for _ in range(n)]
+    u = zero
+    for body in system.bodies:
+        bi = body_inertia(body)
+        cols = sorted(jw[body.name])
+        if len(bi.parts) > 1:  # part by part, as lagrange.py: the com (a quotient) never enters
+            elements = [(p.mass, p.centroid) for p in bi.parts]
+            inertia = sum((sp.Matrix(p.inertia_centroid) for p in bi.parts), sp.zeros(3, 3))
+        else:
+            elements = [(bi.mass, bi.com)]
+            inertia = sp.Matrix(bi.inertia_com)
+        wj = jw[body.name]
+        first_moment = [zero, zero, zero]
+        for mass, at in elements:
+            m = alg.coefficient(mass)
+            if not m:
+                continue
+            p = [const(x) for x in at]
+            first_moment = [fm + pc.scale(m) for fm, pc in zip(first_moment, p, strict=True)]
+            vc = {c: _add(jv[body.name][c], _cross(wj[c], p)) for c in cols}
+            mvc = {c: [x.scale(m) for x in vc[c]] for c in cols}
+            for a_i, a in enumerate(cols):
+                for b in cols[a_i:]:
+                    h[a][b] = h[a][b] + _dot(vc[a], mvc[b])
+            u = u - _dot(grav[body.name], pos[body.name]).scale(m)
+        if inertia != sp.zeros(3, 3):
+            im = [[const(inertia[r, s]) for s in range(3)] for r in range(3)]
+            iw = {c: _apply(im, wj[c]) for c in cols}
+            for a_i, a in enumerate(cols):
+                for b in cols[a_i:]:
+                    h[a][b] = h[a][b] + _dot(wj[a], iw[b])
+        if has_gravity:
+            u = u - _dot(grav[body.name], first_moment)
+    for joint in system.joints:
+        if joint.coordinate is not None and joint.reflected_inertia is not None:
+            k = index[joint.coordinate.q]
+            h[k][k] = h[k][k] + const(joint.reflected_inertia)
+    for a in range(n):
+        for b in range(a):
+            h[a][b] = h[b][a]
+    t_h = time.perf_counter()
+
+    # C q_dot from the Christoffel symbols of the first kind, G = dU/dq
+    dh = [[[h[i][j].diff(k) for k in range(n)] for j in range(n)] for i in range(n)]
+    half = alg.ring.ground_new(alg.ring.domain(1, 2))
+    # (C q_dot itself is never formed as a TrigPoly: it is written from the converted symbols, and the
+    # numeric checks contract the symbols' values)
+    gammas: dict[tuple[int, int, int], TrigPoly] = {}  # Gamma_ijk, j <= k
+    for i in range(n):
+        for j in range(n):
+            for k in range(j, n):
+                gam = (dh[i][j][k] + dh[i][k][j] - dh[j][k][i]).scale(half)
+                if gam:
+                    gammas[(i, j, k)] = gam
+    g_vec = [u.diff(i) for i in range(n)]
+    t_c = time.perf_counter()
+
+    mass_matrix = sp.ImmutableMatrix(n, n, lambda i, j: h[min(i, j)][max(i, j)].to_expr())
+    mass_matrix = sp.ImmutableMatrix(n, n, _mirror(mass_matrix, n))
+    first: dict[tuple[int, int, int], sp.Expr] = {}
+    for (i, j, k), gam in gammas.items():
+        first[(i, j, k)] = first[(i, k, j)] = gam.to_expr()
+    first = dict(sorted(first.items()))
+    # C_i = sum_j Gamma_ijj q_dot_j^2 + 2 sum_{j<k} Gamma_ijk q_dot_j q_dot_k: the same grouping by rate
+    # monomials that TrigPoly.to_expr(rates) gives, without converting C on its own
+    coriolis = sp.ImmutableMatrix(
+        [
+            monomial_times_sum(
+                [
+                    (first[key], 1 if key[1] == key[2] else 2, (rates[key[1]], rates[key[2]]))
+                    for key in gammas
+                    if key[0] == i
+                ]
+            )
+            for i in range(n)
+        ]
+    )
+    gravity_vector = sp.ImmutableMatrix([g.to_expr() for g in g_vec])
+    u_expr = u.to_expr()
+    t_out = time.perf_counter()
+    timings = (
+        ("kinematics", t_kin - start),
+        ("mass_matrix", t_h - t_kin),
+        ("coriolis_gravity", t_c - t_h),
+        ("to_sympy", t_out - t_c),
+        ("total", t_out - start),
+    )
+    exact = _Exact(alg, h, dh, gammas, g_vec, u)
+    return SerialDynamics(tuple(coords), rates, mass_matrix, coriolis, gravity_vector, u_expr, first, timings, exact)
+
+
+def _mirror(m: sp.MatrixBase, n: int) -> list[sp.Expr]:
+    """Row-major entries with the lower triangle taken from the upper one (the same objects)."""
+    return [m[min(i, j), max(i, j)] for i in range(n) for j in range(n)]
+
+
+# ---------------------------------------------------------------------------------------------
+# Checks and common subexpressions
+# ---------------------------------------------------------------------------------------------
+
+
+def skew_check(dyn: SerialDynamics) -> bool:
+    """H_dot - 2 C is skew-symmetric, exactly (canonical TrigPolys: N + N^T compares with zero)."""
+    ex = dyn.exact
+    alg = ex.algebra
+    n = len(ex.h)
+    qd = [alg.rate(s) for s in dyn.rates]
+    cm = _coriolis_matrix(ex)
+    hdot = [[_sum([ex.dh[i][j][k].scale(qd[k]) for k in range(n)] or [alg.zero]) for j in range(n)] for i in range(n)]
+    two = alg.ring.ground_new(alg.ring.domain(2))
+    for i in range(n):
+        for j in range(i, n):
+            s = hdot[i][j] - cm[i][j].scale(two) + hdot[j][i] - cm[j][i].scale(two)
+            if s:
+                return False
+    return True
+
+
+def cse_form(dyn: SerialDynamics) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list[sp.ImmutableMatrix]]:
+    """Common subexpressions of H, C q_dot and G together (``sympy.cse``): the replacements
+    x_k = ..., and the three matrices written with them, for code generation or a compact listing.
+
+    The trigonometric functions and the grouped coefficients repeat between the entries, so the
+    listing shrinks (tests/engine/test_serial.py checks that it does and that it substitutes back).
+    """
+    exprs = [dyn.mass_matrix, dyn.coriolis_vector, dyn.gravity_vector]
+    replacements, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("x"), order="none")
+    return replacements, [sp.ImmutableMatrix(r) for r in reduced]
+
+
+def numeric_inverse_dynamics(
+    system: System, values: dict[sp.Symbol, float], q: Sequence[float], qd: Sequence[float], qdd: Sequence[float]
+) -> list[float]:
+    """tau = H q_ddot + C q_dot + G by a numeric recursive Newton-Euler pass (floats, world axes),
+    independent of the symbolic route: the agreement check of the fast path.
+
+    Forward: each link's rotation, angular velocity and acceleration, and its origin's acceleration,
+    from its parent's. Backward: the force and moment each joint transmits; tau_i is the moment (or
+    the force, prismatic) along the joint axis. Gravity enters as an upward acceleration of the base.
+    """
+    n = len(system.coordinates)
+    index = {c.q: i for i, c in enumerate(system.coordinates)}
+    by_child = {j.child: j for j in system.joints}
+
+    floats = {s: sp.Float(v) for s, v in values.items()}
+
+    def num(e: sp.Expr) -> float:
+        return float(sp.sympify(e).xreplace(floats))  # xreplace: subs with a large dict is slow
+
+    def mat(m: sp.MatrixBase) -> list[list[float]]:
+        return [[num(m[i, k]) for k in range(3)] for i in range(3)]
+
+    def mv(a: list[list[float]], v: list[float]) -> list[float]:
+        return [sum(a[i][k] * v[k] for k in range(3)) for i in range(3)]
+
+    def mm(a: list[list[float]], b: list[list[float]]) -> list[list[float]]:
+        return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+
+    def cross(a: list[float], b: list[float]) -> list[float]:
+        return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+    def add(*vs: list[float]) -> list[float]:
+        return [sum(v[i] for v in vs) for i in range(3)]
+
+    def scale(s: float, v: list[float]) -> list[float]:
+        return [s * x for x in v]
+
+    def rot(axis: list[float], angle: float) -> list[list[float]]:
+        c, s = math.cos(angle), math.sin(angle)
+        x, y, z = axis
+        return [
+            [c + x * x * (1 - c), x * y * (1 - c) - z * s, x * z * (1 - c) + y * s],
+            [y * x * (1 - c) + z * s, c + y * y * (1 - c), y * z * (1 - c) - x * s],
+            [z * x * (1 - c) - y * s, z * y * (1 - c) + x * s, c + z * z * (1 - c)],
+        ]
+
+    g = [num(x) for x in system.gravity] if system.gravity is not None else [0.0, 0.0, 0.0]
+    eye = [[1.0 if i == k else 0.0 for k in range(3)] for i in range(3)]
+    frame: dict[str, tuple] = {GROUND: (eye, [0.0] * 3, [0.0] * 3, [0.0] * 3, [-x for x in g], [0.0] * 3)}
+    # (R world-from-link, origin, omega, alpha, origin acceleration (with -g), origin velocity)
+
+    def place(name: str) -> None:
+        if name in frame:
+            return
+        j = by_child[name]
+        place(j.parent)
+        r_p, o_p, w_p, al_p, a_p, v_p = frame[j.parent]
+        fixed = mm(r_p, mat(j.rotation))
+        axis_w = mv(fixed, [num(x) for x in j.axis])
+        k = index[j.coordinate.q] if j.coordinate is not None else None
+        value = (q[k] if k is not None else 0.0) + num(j.offset)
+        rate = qd[k] if k is not None else 0.0
+        acc = qdd[k] if k is not None else 0.0
+        lever = mv(r_p, [num(x) for x in j.origin_offset])
+        o = add(o_p, lever)
+        v = add(v_p, cross(w_p, lever))
+        a = add(a_p, cross(al_p, lever), cross(w_p, cross(w_p, lever)))
+        w, al, r = w_p, al_p, fixed
+        if j.kind is JointKind.REVOLUTE:
+            r = mm(fixed, rot([num(x) for x in j.axis], value))
+            w = add(w_p, scale(rate, axis_w))
+            al = add(al_p, scale(acc, axis_w), cross(w_p, scale(rate, axis_w)))
+        elif j.kind is JointKind.PRISMATIC:
+            s = scale(value, axis_w)
+            o = add(o, s)
+            v = add(v, cross(w_p, s), scale(rate, axis_w))
+            a = add(
+                a, cross(al_p, s), cross(w_p, cross(w_p, s)), scale(2 * rate, cross(w_p, axis_w)), scale(acc, axis_w)
+            )
+        frame[name] = (r, o, w, al, a, v)
+
+    wrench: dict[str, tuple[list[float], list[float]]] = {}  # force and moment about the origin, world
+    for body in system.bodies:
+        place(body.name)
+        r, o, w, al, a, _ = frame[body.name]
+        bi = body_inertia(body)
+        m = num(bi.mass)
+        c = mv(r, [num(x) for x in bi.com]) if m else [0.0] * 3
+        a_c = add(a, cross(al, c), cross(w, cross(w, c)))
+        i_w = mm(mm(r, mat(bi.inertia_com)), [list(row) for row in zip(*r, strict=True)])
+        f = scale(m, a_c)
+        moment = add(mv(i_w, al), cross(w, mv(i_w, w)), cross(c, f))
+        wrench[body.name] = (f, moment)
+    # backward: children first (reverse of a parents-first order)
+    order: list[str] = []
+    for body in system.bodies:
+        chain = []
+        name = body.name
+        while name != GROUND and name not in order and name not in chain:
+            chain.append(name)
+            name = by_child[name].parent
+        order += reversed(chain)
+    tau = [0.0] * n
+    for name in reversed(order):
+        j = by_child[name]
+        f, moment = wrench[name]
+        _, o, *_ = frame[name]
+        axis_w = mv(mm(frame[j.parent][0], mat(j.rotation)), [num(x) for x in j.axis])
+        if j.coordinate is not None:
+            k = index[j.coordinate.q]
+            tau[k] = sum(axis_w[i] * (moment if j.kind is JointKind.REVOLUTE else f)[i] for i in range(3))
+            if j.reflected_inertia is not None:  # the rotor behind a gearbox: n^2 J_m q_ddot
+                tau[k] += num(j.reflected_inertia) * qdd[k]
+        if j.parent != GROUND:
+            pf, pm = wrench[j.parent]
+            _, po, *_ = frame[j.parent]
+            wrench[j.parent] = (add(pf, f), add(pm, moment, cross(add(o, scale(-1, po)), f)))
+    return tau
+
+
+@dataclass(frozen=True)
+class NumericReport:
+    """What :func:`numeric_checks` found, worst over its random states."""
+
+    agreement: float  # largest relative difference of H q_ddot + C q_dot + G from Newton-Euler's torques
+    skew: float  # largest |N_ij + N_ji| / scale for N = H_dot - 2 C
+    lowest_eigenvalue: float  # of H, relative to its largest
+    states: int
+
+
+def numeric_checks(system: System, dyn: SerialDynamics, states: int = 5, seed: int = 20261124) -> NumericReport:
+    """The fast path's checks, in floats at ``states`` random states (parameters without a value in
+    [0.5, 2], q in [-3, 3], rates and accelerations in [-2, 2]), evaluated on the exact polynomials:
+
+    - H q_ddot + C q_dot + G against :func:`numeric_inverse_dynamics`, an independent recursive
+      Newton-Euler pass in world axes;
+    - N = H_dot - 2 C skew-symmetric, with H_dot_ij = sum_k dH_ij/dq_k q_dot_k;
+    - the eigenvalues of H (positive semi-definite: T >= 0).
+    """
+    import numpy as np
+
+    from tutgen.engine.trigpoly import NumericEvaluator
+
+    rng = random.Random(seed)
+    ex = dyn.exact
+    n = len(dyn.coordinates)
+    known = system.values
+    params = [p.symbol for p in system.parameters]
+    keys = list(ex.gammas)
+    polys = [ex.h[i][j] for i in range(n) for j in range(n)] + ex.g + [ex.gammas[key] for key in keys]
+    polys += [ex.dh[i][j][k] for i in range(n) for j in range(n) for k in range(n)]
+    evaluate = NumericEvaluator(ex.algebra, polys)
+    worst_agree = worst_skew = 0.0
+    lowest = math.inf
+    for _ in range(states):
+        values: dict[sp.Symbol, float] = {s: float(known[s]) if s in known else rng.uniform(0.5, 2.0) for s in params}
+        extra = {s for g in ex.algebra.gens for s in sp.sympify(g).free_symbols}
+        for sym in sorted(extra - set(values) - set(dyn.coordinates) - set(dyn.rates), key=str):
+            values[sym] = rng.uniform(0.5, 2.0)
+        q = [rng.uniform(-3, 3) for _ in range(n)]
+        qd = [rng.uniform(-2, 2) for _ in range(n)]
+        qdd = [rng.uniform(-2, 2) for _ in range(n)]
+        values |= dict(zip(dyn.coordinates, q, strict=True)) | dict(zip(dyn.rates, qd, strict=True))
+        flat = np.array(evaluate(values))
+        h = flat[: n * n].reshape(n, n)
+        g = flat[n * n : n * n + n]
+        gam = flat[n * n + n : n * n + n + len(keys)]
+        dh = flat[n * n + n + len(keys) :].reshape(n, n, n)
+        c = np.zeros(n)
+        for (i, j, k), value in zip(keys, gam, strict=True):  # C_i = sum_jk Gamma_ijk q_dot_j q_dot_k
+            c[i] += value * qd[j] * qd[k] * (1 if j == k else 2)
+        ours = h @ np.array(qdd) + c + g
+        theirs = numeric_inverse_dynamics(system, values, q, qd, qdd)
+        scale = max(1.0, *(abs(x) for x in theirs))
+        worst_agree = max(worst_agree, *(abs(a - b) / scale for a, b in zip(ours, theirs, strict=True)))
+        v = np.array(qd)
+        hdot = dh @ v
+        c = 0.5 * (dh @ v + np.einsum("ikj,k->ij", dh, v) - np.einsum("jki,k->ij", dh, v))
+        skew = hdot - 2 * c
+        worst_skew = max(worst_skew, float(np.max(np.abs(skew + skew.T))) / max(1.0, float(np.max(np.abs(hdot)))))
+        eig = np.linalg.eigvalsh((h + h.T) / 2)
+        lowest = min(lowest, float(eig[0]) / max(1.0, float(np.max(np.abs(eig)))))
+    return NumericReport(float(worst_agree), float(worst_skew), float(lowest), states)
+
+
+# ---------------------------------------------------------------------------------------------
+# The fast path of derive()
+# ---------------------------------------------------------------------------------------------
+
+#: Serial chains with at least this many coordinates take the fast path in ``derive``: below it the
+#: general route is quick (a 3-DOF arm derives in seconds) and shows Lagrange's equations term by term,
+#: which a worked solution of a small arm wants; from four on those expansions run to pages and the
+#: general route's tidying grows too fast (minutes at six).
+LARGE = 4
+
+REMARK_FAST_PATH = (
+    "This arm is a serial chain with {n} coordinates, so H, C and G were derived by the route for serial arms: "
+    "velocity Jacobians in each link's own axes, exact trigonometric polynomials, and C from the Christoffel "
+    "symbols of H. Lagrange's equations term by term, each body's kinematics and energies, and the Newton-Euler "
+    "derivation are omitted: they would run to pages. The result is checked numerically against an independent "
+    "recursive Newton-Euler computation."
+)
+
+
+def is_large_serial_chain(system: System) -> bool:
+    """The rule of ``derive``'s fast path: a serial chain (:func:`is_serial_chain`) with at least
+    ``LARGE`` coordinates."""
+    return len(system.coordinates) >= LARGE and is_serial_chain(system)
+
+
+def derive_serial(
+    system: System, method: str, inertia: tuple[BodyInertia, ...], principal: tuple[Principal | None, ...]
+) -> Derivation:
+    """The :class:`Derivation` of a large serial chain: H, C, G, Q, the equations of motion and the
+    Christoffel symbols, with empty ``lagrange_terms`` and no Newton-Euler (see ``REMARK_FAST_PATH``).
+
+    Q, springs and dampers use the general route's code (world kinematics are built only when a load,
+    or a spring or damper between points, needs them).
+    """
+    import dataclasses
+
+    from tutgen.engine import lagrange
+    from tutgen.engine.checks import dimension_checks
+    from tutgen.engine.derivation import Check
+    from tutgen.engine.kinematics import Kinematics
+    from tutgen.engine.lagrange import _degeneracy_remarks, _generalized_forces, _spring_energy, _zero_remarks
+    from tutgen.engine.tidy import tidy
+    from tutgen.errors import DerivationError
+    from tutgen.limits import checkpoint
+
+    checkpoint("mass matrix, Coriolis and gravity terms (serial arm)")
+    dyn = serial_dynamics(system)
+    q = [c.q for c in system.coordinates]
+    qd = [c.qd for c in system.coordinates]
+    qdd = [c.qdd for c in system.coordinates]
+    n = len(q)
+    needs_world = bool(system.loads) or any(e.between is not None for e in (*system.springs, *system.dampers))
+    kin = Kinematics(system, {bi.name: bi.com for bi in inertia}) if needs_world else None
+
+    checkpoint("energies of springs")
+    spring_energies = tuple((s.name, _spring_energy(s, kin, system)) for s in system.springs)
+    u_springs = sp.Add(*[e for _, e in spring_energies])
+    u_total = dyn.potential_energy + u_springs
+    g_vec = dyn.gravity_vector
+    if u_springs != 0:
+        g_vec = sp.ImmutableMatrix([g_vec[i] + tidy(sp.diff(u_springs, q[i])) for i in range(n)])
+    checkpoint("generalized forces")
+    forces = _generalized_forces(system, kin, q, qd)
+    h = dyn.mass_matrix
+    t_total = sp.Add(
+        *[h[i, i] * qd[i] ** 2 / 2 for i in range(n)],
+        *[h[i, j] * qd[i] * qd[j] for i in range(n) for j in range(i + 1, n)],
+    )
+    q_vec = sp.ImmutableMatrix(forces)
+    c_vec = dyn.coriolis_vector
+    eom = sp.ImmutableMatrix(
+        [sp.Add(*[h[i, j] * qdd[j] for j in range(n)], c_vec[i], g_vec[i], -q_vec[i]) for i in range(n)]
+    )
+
+    checkpoint("Christoffel symbols")
+    zero = sp.Integer(0)
+    table = dyn.christoffel
+    first = dyn.christoffel_first_kind
+    keys = [(i, j, k) for i in range(n) for j in range(n) for k in range(n)]
+
+    checkpoint("checks")
+    report = numeric_checks(system, dyn)
+    checks = [
+        Check(
+            "matrix_form_equals_newton_euler",
+            report.agreement < 1e-8,
+            f"H q_ddot + C + G equals a numeric recursive Newton-Euler pass at {report.states} random states "
+            f"(largest relative difference {report.agreement:.1e})",
+        ),
+        Check("skew_symmetry", report.skew < 1e-8, f"H_dot - 2 C is skew-symmetric at {report.states} random states"),
+        Check("symmetric_mass_matrix", h == h.T, "H = H^T"),
+        Check(
+            "positive_semidefinite_mass_matrix",
+            report.lowest_eigenvalue > -1e-12,
+            f"H is positive {'definite' if report.lowest_eigenvalue > 1e-12 else 'semi-definite'} "
+            f"at {report.states} random states",
+        ),
+    ]
+    for check in checks:
+        if not check.passed:
+            negative = [p for p in system.parameters if p.value is not None and p.value.is_negative]
+            if check.name == "positive_semidefinite_mass_matrix" and negative:
+                given = ", ".join(f"{p.name} = {sp.sstr(p.value)}" for p in negative)
+                raise DerivationError(
+                    "the mass matrix H has a negative eigenvalue: the kinetic energy could be negative; a mass "
+                    f"or inertia must not be negative (given: {given})",
+                    negative[0].origin,
+                )
+            raise DerivationError(
+                f"internal check failed: {check.name} ({check.detail}); please report this spec as a tutgen bug",
+                system.origin,
+            )
+    remarks = [REMARK_FAST_PATH.format(n=n)]
+    rotor_remark = getattr(lagrange, "_rotor_remark", None)  # the rotors' wording lives with the general route
+    if rotor_remark is not None:
+        remarks += [
+            rotor_remark(system, q.index(j.coordinate.q), j.reflected_inertia)
+            for j in system.joints
+            if j.coordinate is not None and j.reflected_inertia is not None
+        ]
+    remarks += _degeneracy_remarks(system, h, None, t_total, u_total, forces, eom)
+    remarks += _zero_remarks(system, inertia, u_total, forces)
+    derivation = Derivation(
+        system=system,
+        inertia=inertia,
+        principal=principal,
+        spring_energies=spring_energies,
+        kinetic_energy=t_total,
+        potential_energy=u_total,
+        lagrangian=t_total - u_total,
+        generalized_forces=q_vec,
+        mass_matrix=h,
+        coriolis_vector=c_vec,
+        coriolis_matrix=dyn.coriolis_matrix,
+        gravity_vector=g_vec,
+        equations_of_motion=eom,
+        christoffel={key: table.get(key, zero) for key in keys},
+        christoffel_first_kind={key: first.get(key, zero) for key in keys},
+        remarks=tuple(remarks),
+        checks=tuple(checks),
+        method=method,
+    )
+    # the dimensional check of checks.py is cheap; its eigenvalue check lambdifies H (seconds at 6 DOF),
+    # so the numeric one above replaces it
+    checkpoint("checks: dimensions")
+    dims = dimension_checks(system, derivation)
+    for check in dims:
+        if not check.passed:
+            raise DerivationError(
+                f"internal check failed: {check.detail}; please report this spec as a tutgen bug", system.origin
+            )
+    return dataclasses.replace(derivation, checks=(*derivation.checks, *dims))
