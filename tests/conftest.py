@@ -28,6 +28,27 @@ def pytest_addoption(parser: pytest.Parser) -> None:
     )
 
 
+#: fully symbolic spatial arms: seconds to derive but minutes to print (7 MB of Markdown for the symbolic
+#: PUMA), so every per-spec test of theirs runs only with ``-m slow``; tests/engine/test_recursive.py and
+#: test_serial.py check their dynamics in the default run without printing them
+HEAVY_SPECS = frozenset({"puma560", "stanford"})
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Mark the per-spec tests of HEAVY_SPECS slow, and leave slow tests out of the default run
+    (``pytest -m slow`` runs them, ``-m "slow or not slow"`` everything)."""
+    for item in items:
+        params = getattr(getattr(item, "callspec", None), "params", {})
+        if any(isinstance(v, (str, Path)) and Path(str(v)).stem in HEAVY_SPECS for v in params.values()):
+            item.add_marker(pytest.mark.slow)
+    if config.option.markexpr:
+        return
+    skip = pytest.mark.skip(reason="slow: run with pytest -m slow")
+    for item in items:
+        if item.get_closest_marker("slow"):
+            item.add_marker(skip)
+
+
 def all_specs() -> list[Path]:
     """Every problem spec under specs/ (tutorial sheets, ``*sheet*.yaml``, are not problem specs)."""
     return sorted(p for p in SPECS.rglob("*.yaml") if "sheet" not in p.stem)

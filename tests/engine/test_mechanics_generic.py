@@ -250,7 +250,14 @@ class MechanicsModel:
         forcing = (km.forcing + self.extra_forces()).xreplace(plain)
         leftover = mass.atoms(AppliedUndef, sp.Derivative) | forcing.atoms(AppliedUndef, sp.Derivative)
         assert not leftover, f"functions of time left in Kane's equations: {leftover}"
-        return Reference(sp.Matrix(mass), sp.Matrix(forcing))
+        mass = sp.Matrix(mass)
+        # a motor's rotor, as the spec format models it: its reflected inertia n^2 J_m on the diagonal
+        names = [c.name for c in self.system.coordinates]
+        for joint in self.system.joints:
+            if joint.reflected_inertia is not None and joint.coordinate is not None:
+                i = names.index(joint.coordinate.name)
+                mass[i, i] += joint.reflected_inertia
+        return Reference(mass, sp.Matrix(forcing))
 
 
 def reference(system: System) -> Reference:
@@ -333,7 +340,7 @@ def dynamic_specs() -> list[Any]:
     out = []
     for path in all_specs():
         data = yaml.safe_load(path.read_text(encoding="utf-8"))
-        if isinstance(data, dict) and data.get("coordinates") and data.get("bodies"):
+        if isinstance(data, dict) and data.get("coordinates") and (data.get("bodies") or data.get("arm")):
             out.append(pytest.param(path, id=path.relative_to(ROOT / "specs").with_suffix("").as_posix()))
     return out
 

@@ -52,3 +52,26 @@ def test_markdown_display_maths_is_fenced_on_own_lines(spec: Path) -> None:
     inline = [line for line in text.splitlines() if "$$" not in line]
     for line in inline:  # every unescaped single dollar opens or closes inline maths
         assert len(re.findall(r"(?<!\\)\$", line)) % 2 == 0, line
+
+
+def test_given_value_is_shown_in_the_unit_it_was_written_in(tmp_path):
+    """`a: 20 cm` is 1/5 m inside; the worked solution gives it back as 20 cm (not "1/5 cm")."""
+    from tutgen.engine.lagrange import derive
+    from tutgen.render.markdown import render_markdown
+    from tutgen.spec.validate import load_system_text
+
+    text = """tutgen: 1
+title: units as written
+parameters: {m: 2.5 kg, a: 20 cm, g: 9.81 m/s^2, phi: 30 deg}
+coordinates: [theta]
+gravity: [0, -g, 0]
+bodies:
+  bob: {mass: m, com: [a, 0, 0]}
+joints:
+  pivot: {type: revolute, parent: ground, child: bob, axis: z, coordinate: theta, offset: phi}
+"""
+    md = render_markdown(derive(load_system_text(text, "units.yaml"), method="lagrange"))
+    given = next(line for line in md.splitlines() if line.startswith("**Given.**"))
+    for shown in (r"m = 2.5\ \mathrm{kg}", r"a = 20\ \mathrm{cm}", r"g = 9.81\ \mathrm{m/s^2}", r"= 30\ \mathrm{deg}"):
+        assert shown in given, (shown, given)
+    assert "frac" not in given

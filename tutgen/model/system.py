@@ -38,6 +38,9 @@ class Parameter:
     unit: str | None
     origin: Location
     dimension: Dimension | None = None  # from its unit or declared dimension; None when unknown
+    # the allowed values (exact, SI) when the spec gives a range or choices (variants of a tutorial
+    # sheet, docs/sheets.md); ``value`` is then the nominal one
+    choices: tuple[sp.Expr, ...] | None = None
 
 
 @dataclass(frozen=True)

@@ -134,6 +134,19 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
             results["gravity_vector"] = vector(num(d.gravity_vector))
             if d.mass_matrix_determinant is not None:
                 results["mass_matrix_determinant"] = value(num(d.mass_matrix_determinant))
+        rotors = [j for j in system.joints if j.reflected_inertia is not None and j.coordinate is not None]
+        if rotors and (Ask.MATRIX_FORM in ask or Ask.EQUATIONS_OF_MOTION in ask):
+            # what the motors add to H (on its diagonal): spec data, listed so that H can be read
+            results["rotors"] = {
+                j.name: {
+                    "coordinate": j.coordinate.name,
+                    "rotor_inertia": value(num(j.rotor_inertia)),
+                    "gear_ratio": value(num(j.gear_ratio if j.gear_ratio is not None else sp.Integer(1))),
+                    "reflected_inertia": value(num(j.reflected_inertia)),
+                }
+                for j in rotors
+                if j.coordinate is not None
+            }
         if Ask.EQUATIONS_OF_MOTION in ask and d.equations_of_motion is not None:
             results["equations_of_motion"] = vector(num(d.equations_of_motion))
         if Ask.CHRISTOFFEL in ask:

@@ -26,8 +26,9 @@ import sympy as sp
 
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.newton_euler import PROJECTION_REMARK, NEMethod, NewtonEuler
-from tutgen.model.system import Ask, Coordinate
+from tutgen.model.system import Ask, Coordinate, System
 from tutgen.render.latex import LINE_WIDTH, TexPrinter, visible_length
+from tutgen.spec.units import decimal_text, in_unit
 
 Part = dict[str, str]
 Block = dict[str, Any]
@@ -119,7 +120,44 @@ def _n(expr: Any) -> Any:
 
 
 def _unit(unit: str) -> str:
-    return "\\ \\mathrm{" + unit.replace("_", "\\_").replace("%", "\\%") + "}"
+    return "\\ \\mathrm{" + unit.replace("_", "\\_").replace("%", "\\%").replace("*", "\\,") + "}"
+
+
+#: results longer than this many operations (sympy.count_ops) are not printed whole in a worked
+#: solution: T and L become 1/2 q_dot^T H q_dot, the equations of motion are the rows of the matrix
+#: form, H, C and G are printed entry by entry, and the Christoffel symbols are left to the JSON output
+#: (a fully symbolic 6-DOF arm has a million operations of them). Small problems are never affected.
+PRINT_BUDGET = 4000
+
+
+def _ops(*exprs: Any) -> int:
+    total = 0
+    for e in exprs:
+        if isinstance(e, sp.MatrixBase):
+            total += sum(sp.count_ops(x) for x in e)
+        elif isinstance(e, sp.Basic):
+            total += sp.count_ops(e)
+    return total
+
+
+def given_items(system: System) -> list[list[Part]]:
+    """The data of a problem: each parameter's value in its unit as written (``l = 15 cm``, not the
+    SI number with the written unit), or its name, with its description."""
+    tex = TexPrinter(system)
+    items: list[list[Part]] = []
+    for p in system.parameters:
+        if p.value is not None:
+            number = in_unit(p.value, p.unit)
+            shown = decimal_text(number) if number.is_Rational else tex(number)
+            item = [math(f"{p.latex} = {shown}{_unit(p.unit) if p.unit else ''}")]
+            if p.description:
+                item.append(text(f" ({p.description})"))
+        else:
+            item = [math(p.latex)]
+            if p.description:
+                item.append(text(f": {p.description}"))
+        items.append(item)
+    return items
 
 
 def solution_view(d: Derivation) -> dict[str, Any]:
@@ -129,17 +167,7 @@ def solution_view(d: Derivation) -> dict[str, Any]:
     num = d.numeric
     sections: list[dict[str, Any]] = []
 
-    given: list[list[Part]] = []
-    for p in s.parameters:
-        if p.value is not None:
-            item = [math(f"{p.latex} = {tex(p.value)}{_unit(p.unit) if p.unit else ''}")]
-            if p.description:
-                item.append(text(f" ({p.description})"))
-        else:
-            item = [math(p.latex)]
-            if p.description:
-                item.append(text(f": {p.description}"))
-        given.append(item)
+    given = given_items(s)
     coords = [[math(c.latex)] + ([text(f": {c.description}")] if c.description else []) for c in s.coordinates]
 
     if Ask.INERTIA in s.ask and d.inertia:
@@ -202,13 +230,25 @@ def solution_view(d: Derivation) -> dict[str, Any]:
         )
         sec = section("Energies", intro)
         blocks = sec["blocks"]
+        long_t = _ops(d.kinetic_energy) > PRINT_BUDGET
         for e in d.energies:
             blocks.append(display(tex.equation(f"T_{{{_tex_name(e.name)}}}", num(e.kinetic))))
         only_t = Ask.EQUATIONS_OF_MOTION not in s.ask and Ask.KINETIC_ENERGY in s.ask
-        blocks.append((boxed if only_t else display)(tex.equation("T", num(d.kinetic_energy))))
+        if long_t:
+            blocks.append(display("T = \\tfrac12\\, \\dot q^T H(q)\\, \\dot q"))
+            blocks.append(
+                para(
+                    prose(
+                        f"with $H$ of the matrix form below (written out, $T$ has {_ops(d.kinetic_energy)} operations)."
+                    )
+                )
+            )
+        else:
+            blocks.append((boxed if only_t else display)(tex.equation("T", num(d.kinetic_energy))))
         if d.potential_energy is not None and Ask.POTENTIAL_ENERGY in s.ask:
-            blocks.append(display(tex.equation("U", num(d.potential_energy))))
-        if d.lagrangian is not None and Ask.LAGRANGIAN in s.ask:
+            u = num(d.potential_energy)
+            blocks.append(display(tex.equation("U", _decimals(u) if long_t else u)))
+        if d.lagrangian is not None and Ask.LAGRANGIAN in s.ask and not long_t:
             blocks.append(display(tex.equation("L = T - U", num(d.lagrangian))))
         sections.append(sec)
 
@@ -231,7 +271,16 @@ def solution_view(d: Derivation) -> dict[str, Any]:
             )
         sections.append(sec)
 
-    if d.equations_of_motion is not None and Ask.EQUATIONS_OF_MOTION in s.ask:
+    long_eom = d.equations_of_motion is not None and _ops(d.equations_of_motion) > PRINT_BUDGET
+    if d.equations_of_motion is not None and Ask.EQUATIONS_OF_MOTION in s.ask and long_eom:
+        sec = section(
+            "Equations of motion",
+            f"Written out, the {len(s.coordinates)} equations have {_ops(d.equations_of_motion)} operations: "
+            "equation $i$ is row $i$ of the matrix form below,",
+        )
+        sec["blocks"].append(boxed("H(q)\\,\\ddot q + C(q,\\dot q) + G(q) = Q"))
+        sections.append(sec)
+    elif d.equations_of_motion is not None and Ask.EQUATIONS_OF_MOTION in s.ask:
         sec = section("Equations of motion")
         for eq, force in zip(d.equations_of_motion, d.generalized_forces, strict=True):
             lhs = num(eq + force)
@@ -244,8 +293,11 @@ def solution_view(d: Derivation) -> dict[str, Any]:
             "$H(q)\\ddot q + C(q,\\dot q) + G(q) = Q$, with $H$ read off "
             "$T = \\tfrac12 \\dot q^T H \\dot q$ and $G = \\partial U/\\partial q$.",
         )
-        sec["blocks"].append(display(f"H = {tex(num(d.mass_matrix))}"))
-        if Ask.MATRIX_FORM in s.ask:
+        if _ops(d.mass_matrix, d.coriolis_vector, d.gravity_vector) > PRINT_BUDGET:
+            sec["blocks"] += _entry_by_entry(d, tex, num, Ask.MATRIX_FORM in s.ask)
+        else:
+            sec["blocks"].append(display(f"H = {tex(num(d.mass_matrix))}"))
+        if Ask.MATRIX_FORM in s.ask and _ops(d.mass_matrix, d.coriolis_vector, d.gravity_vector) <= PRINT_BUDGET:
             sec["blocks"].append(
                 display(
                     f"C = {tex(num(d.coriolis_vector))},\\quad G = {tex(num(d.gravity_vector))},"
@@ -264,7 +316,18 @@ def solution_view(d: Derivation) -> dict[str, Any]:
         )
         blocks = sec["blocks"]
         nonzero = [(k, v) for k, v in sorted(d.christoffel.items()) if v != 0]
-        if nonzero:
+        size = _ops(*(v for _, v in nonzero))
+        if size > PRINT_BUDGET:
+            blocks.append(
+                para(
+                    prose(
+                        f"{len(nonzero)} of the {len(d.christoffel)} symbols $h_{{ijk}}$ are nonzero; together they "
+                        f"have {size} operations, too many to print here. They are in the JSON output "
+                        "(tutgen solve --format json, under christoffel), and $C$ above is their contraction."
+                    )
+                )
+            )
+        elif nonzero:
             blocks.append(
                 display(",\\quad ".join(f"h_{{{i + 1}{j + 1}{k + 1}}} = {tex(num(v))}" for (i, j, k), v in nonzero))
             )
@@ -425,3 +488,30 @@ def _newton_euler_section(
     if ne.agrees_with_lagrange:
         blocks.append(para(text(ne.agreement.detail + ".")))
     return sec
+
+
+def _decimals(expr: Any) -> Any:
+    """Long exact fractions (measured data: 192438147/500000000) as decimals, which the printer rounds
+    to 4 significant figures; for results printed entry by entry, where exact fractions swamp the page."""
+    if not isinstance(expr, sp.Basic):
+        return expr
+    return expr.xreplace({r: sp.Float(r, 15) for r in expr.atoms(sp.Rational) if r.q > 100})
+
+
+def _entry_by_entry(d: Derivation, tex: TexPrinter, numeric: Any, with_c_g: bool) -> list[Block]:
+    """H (upper triangle; H is symmetric), C and G one entry per display, for results too long for a
+    matrix on a page."""
+
+    def num(e: Any) -> Any:
+        return _decimals(numeric(e))
+
+    n = d.mass_matrix.shape[0]
+    blocks: list[Block] = [para(prose("$H$ is symmetric, $H_{ji} = H_{ij}$; its entries on and above the diagonal:"))]
+    for i in range(n):
+        for j in range(i, n):
+            blocks.append(display(tex.equation(f"H_{{{i + 1}{j + 1}}}", num(d.mass_matrix[i, j]))))
+    if with_c_g:
+        for name, vec in (("C", d.coriolis_vector), ("G", d.gravity_vector), ("Q", d.generalized_forces)):
+            for i in range(n):
+                blocks.append(display(tex.equation(f"{name}_{{{i + 1}}}", num(vec[i]))))
+    return blocks

@@ -120,6 +120,32 @@ DimensionName = Literal[
 ]
 
 
+def _plain_number(value: Any) -> Any:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise PydanticCustomError("tutgen_number", "expected a number, found {found}", {"found": _describe(value)})
+    return value
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _number_list(value: Any) -> Any:
+    if not isinstance(value, list) or not value or not all(_is_number(v) for v in value):
+        raise PydanticCustomError(
+            "tutgen_numbers", "expected a non-empty list of numbers, found {found}", {"found": _describe(value)}
+        )
+    return value
+
+
+def _number_pair(value: Any) -> Any:
+    if not isinstance(value, list) or len(value) != 2 or not all(_is_number(v) for v in value):
+        raise PydanticCustomError(
+            "tutgen_range", "expected a range [lo, hi] of two numbers, found {found}", {"found": _describe(value)}
+        )
+    return value
+
+
 class ParameterSpec(SpecModel):
     """A named quantity of the problem: symbolic (no value) or numeric (a value, with a unit)."""
 
@@ -131,6 +157,20 @@ class ParameterSpec(SpecModel):
     dimension: DimensionName | None = Field(
         None, description="The physical dimension; a value whose unit has another dimension is an error."
     )
+    range: Annotated[list[Any], BeforeValidator(_number_pair)] | None = Field(
+        None,
+        description="Variants (tutgen sheet): the allowed values lo, lo + step, ... up to hi, as [lo, hi] "
+        "(numbers, in `unit`); `value` (if given) is the nominal one, else the middle one.",
+    )
+    step: Annotated[Any, BeforeValidator(_plain_number)] | None = Field(
+        None, description="The step of `range` (a positive number, in `unit`); default (hi - lo)/10."
+    )
+    choices: Annotated[list[Any], BeforeValidator(_number_list)] | None = Field(
+        None,
+        description="Variants (tutgen sheet): the allowed values, as a list of numbers in `unit`; `value` "
+        "(if given) is the nominal one, else the first.",
+    )
+    unit: Text | None = Field(None, description="The unit of `range`, `step` and `choices` ('kg', 'cm', 'N*m').")
 
 
 def _parameters(value: Any) -> Any:
@@ -360,6 +400,20 @@ class BodySpec(SpecModel):
 # ---------------------------------------------------------------------------------------------
 
 
+class MotorSpec(SpecModel):
+    """A motor driving a joint through a gearbox: its rotor adds the reflected inertia n^2 J_m to H_ii.
+
+    Only the reflected inertia is modelled (the rotor's gyroscopic coupling with the links is
+    neglected, as in Spong's and Craig's arm models)."""
+
+    rotor_inertia: Expr = Field(description="J_m, the rotor's moment of inertia about its own axis (kg*m^2).")
+    gear_ratio: Expr | None = Field(
+        None,
+        description="n = rotor speed / joint speed (default 1): dimensionless for a revolute joint, "
+        "rad/m for a prismatic one. Must be positive.",
+    )
+
+
 class JointSpec(SpecModel):
     """A joint that places `child` relative to `parent` (a body, or `ground`)."""
 
@@ -380,6 +434,50 @@ class JointSpec(SpecModel):
         description="'relative': the coordinate is measured from the parent link; 'absolute': from the world "
         "frame (planar arms driven from the base, e.g. through a belt).",
     )
+    motor: MotorSpec | None = Field(
+        None, description="A motor with a gearbox at this joint: {rotor_inertia: Jm1, gear_ratio: n1}."
+    )
+
+
+class DHLinkSpec(SpecModel):
+    """One row of a Denavit-Hartenberg table: the joint that moves this link, and the link's mass properties.
+
+    Exactly one of `theta` (revolute) and `d` (prismatic) uses a coordinate, as the coordinate plus an
+    optional constant ('q2 + pi/2'); the other is a constant. With `convention: modified` (Craig),
+    `a` and `alpha` are the row's a_{i-1} and alpha_{i-1}, as Craig's tables list them.
+    `com` and `inertia` are given in this link's DH frame i.
+    """
+
+    type: Literal["revolute", "prismatic"] | None = Field(
+        None, description="The joint type; by default, from which of `theta` and `d` uses a coordinate."
+    )
+    theta: Expr = Field(0, description="theta_i: a coordinate (revolute), or a constant angle ('90 deg').")
+    d: Expr = Field(0, description="d_i: a coordinate (prismatic), or a constant length.")
+    a: Expr = Field(0, description="a_i (standard) or a_{i-1} (modified): a length.")
+    alpha: Expr = Field(0, description="alpha_i (standard) or alpha_{i-1} (modified): an angle ('-90 deg').")
+    joint: Name | None = Field(None, description="The name of the joint (default: joint<i>, i = 1, 2, ...).")
+    mass: Expr | None = Field(None, description="The link's mass (omitted: a massless link).")
+    com: Vector3 | None = Field(None, description="The centre of mass, in the link's DH frame i.")
+    inertia: InertiaSpec | None = Field(
+        None, description="The inertia tensor about the centre of mass, in the axes of the link's DH frame i."
+    )
+    motor: MotorSpec | None = Field(None, description="A motor with a gearbox driving this row's joint.")
+    description: Text | None = None
+
+
+class ArmSpec(SpecModel):
+    """A serial arm as a Denavit-Hartenberg table, one row per link from the base outward.
+
+    Each row becomes a body (named by its key) and the joint that moves it; frame 0 is the world frame.
+    standard (Spong, Paul): A_i = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i);
+    modified (Craig): A_i = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta_i) Tz(d_i).
+    """
+
+    convention: Literal["standard", "modified"] = Field(
+        description="'standard' (Spong, Paul: frame i at the far end of link i) or 'modified' (Craig: frame i "
+        "on joint axis i)."
+    )
+    links: dict[Name, DHLinkSpec] = Field(description="The rows of the table, by link name, from the base outward.")
 
 
 class EndpointSpec(SpecModel):
@@ -472,6 +570,9 @@ class SpecDoc(SpecModel):
         None, description="[0, -g, 0], or {g: g, direction: -y}."
     )
     bodies: dict[Name, BodySpec] = Field(default_factory=dict, description="The bodies, by name.")
+    arm: ArmSpec | None = Field(
+        None, description="A serial arm as a Denavit-Hartenberg table (its links become bodies and joints)."
+    )
     joints: dict[Name, JointSpec] = Field(default_factory=dict, description="The joints of a kinematic tree.")
     springs: dict[Name, SpringSpec] = Field(default_factory=dict)
     dampers: dict[Name, DamperSpec] = Field(default_factory=dict)

@@ -544,3 +544,35 @@ def dimension_of(expr: sp.Expr, dims: Mapping[sp.Symbol, Dimension | None]) -> D
         dimension_of(expr.args[0], dims)
         return _ONE
     return None
+
+
+# ---------------------------------------------------------------------------------------------
+# Numbers as written (for the worked solution's "Given" and the concrete specs of sheet variants)
+# ---------------------------------------------------------------------------------------------
+
+
+def in_unit(value: sp.Expr, unit: str | None) -> sp.Expr:
+    """An exact SI ``value`` in the unit it was written in (``3/20`` m with unit ``cm`` -> 15)."""
+    if not unit:
+        return value
+    factor, _ = parse_unit(unit)
+    return sp.simplify(value / factor) if not (value / factor).is_Rational else value / factor
+
+
+def decimal_text(x: sp.Expr) -> str:
+    """An exact rational as a decimal literal when it terminates (``7/2`` -> ``3.5``), else ``p/q``."""
+    r = sp.Rational(x)
+    if r.q == 1:
+        return str(r.p)
+    q, twos, fives = r.q, 0, 0
+    while q % 2 == 0:
+        q, twos = q // 2, twos + 1
+    while q % 5 == 0:
+        q, fives = q // 5, fives + 1
+    if q != 1:
+        return f"{r.p}/{r.q}"
+    digits = max(twos, fives)
+    scaled = abs(r.p) * (10**digits // r.q)
+    whole, frac = divmod(scaled, 10**digits)
+    text = f"{whole}.{frac:0{digits}d}".rstrip("0").rstrip(".")
+    return ("-" if r.p < 0 else "") + text

@@ -37,12 +37,14 @@ from tutgen.model.system import (
     System,
 )
 from tutgen.spec import schema as S
-from tutgen.spec.expr import FUNCTIONS, ExprError, parse_expression
+from tutgen.spec.expr import FUNCTIONS, ExprError, number_to_rational, parse_expression
 from tutgen.spec.loader import KeyPath, SourceMap, load_yaml_file, load_yaml_text
-from tutgen.spec.units import DIMENSIONS, Dimension, DimensionMismatch, dimension_of, parse_quantity
+from tutgen.spec.units import DIMENSIONS, Dimension, DimensionMismatch, dimension_of, parse_quantity, parse_unit
 
 RESERVED_NAMES = frozenset({GROUND, "pi", "t", *FUNCTIONS})
 MAX_COORDINATES = 12
+#: The most values a parameter's ``range`` may allow (variants of a tutorial sheet).
+MAX_CHOICES = 10_000
 
 
 def load_system(path: str | Path) -> System:
@@ -71,7 +73,9 @@ NAMED_SECTIONS = {
 #: whole, checking the rest would only report consequences of that one mistake.
 _FOUNDATIONS = frozenset({"parameters", "coordinates", "bodies"})
 #: Keys whose value is the name of something declared elsewhere.
-_NAME_KEYS = frozenset({"parent", "child", "coordinate", "body", "reaction_body"})
+_NAME_KEYS = frozenset({"parent", "child", "coordinate", "body", "reaction_body", "joint"})
+#: The rows of the Denavit-Hartenberg table: each one is set aside on its own, like a named entry.
+_ARM_LINKS: KeyPath = ("arm", "links")
 #: Keys of earlier drafts of the format, and what they are called now.
 _RENAMED_KEYS = {"on": "body", "reaction_on": "reaction_body"}
 
@@ -124,6 +128,8 @@ def _unit(path: KeyPath) -> KeyPath:
     """The part of the spec set aside for a shape error at ``path``: a named entry, or a top-level key."""
     if not path:
         return ()
+    if tuple(path[:2]) == _ARM_LINKS and len(path) >= 3:
+        return tuple(path[:3])
     if path[0] in NAMED_SECTIONS and len(path) >= 2:
         return tuple(path[:2])
     return tuple(path[:1])
@@ -142,6 +148,10 @@ def _prune(data: dict[str, Any], units: set[KeyPath]) -> dict[str, Any]:
             out[section] = {k: v for k, v in value.items() if k not in entries}
         elif isinstance(value, list):
             out[section] = [v for i, v in enumerate(value) if i not in entries]
+    rows = {u[2] for u in units if len(u) == 3 and tuple(u[:2]) == _ARM_LINKS}
+    arm = out.get("arm")
+    if rows and isinstance(arm, dict) and isinstance(arm.get("links"), dict):
+        out["arm"] = {**arm, "links": {k: v for k, v in arm["links"].items() if k not in rows}}
     out.setdefault("title", "")
     return out
 
@@ -236,7 +246,10 @@ def _where(path: KeyPath) -> str:
         return "the spec"
     owner = None
     rest = tuple(path)
-    if path[0] in NAMED_SECTIONS and len(path) >= 2 and isinstance(path[1], str):
+    if tuple(path[:2]) == _ARM_LINKS and len(path) >= 3:
+        owner = f"arm link '{path[2]}'"
+        rest = tuple(path[3:])
+    elif path[0] in NAMED_SECTIONS and len(path) >= 2 and isinstance(path[1], str):
         owner = f"{NAMED_SECTIONS[str(path[0])]} '{path[1]}'"
         rest = tuple(path[2:])
         if path[0] == "bodies" and len(rest) >= 2 and rest[0] == "parts":
@@ -347,6 +360,8 @@ def _translate(exc: ValidationError, data: Any, smap: SourceMap) -> list[_Proble
             hint = hint or f"this version of tutgen reads format {S.SPEC_FORMAT_VERSION}"
         else:
             message = f"{_where(path)} must be {expected}; found {found[0][1]}"
+        if path == ("arm", "convention"):
+            hint = hint or "standard: Spong, Paul (A_i = Rz Tz Tx Rx); modified: Craig (A_i = Rx Tx Rz Tz)"
         problems.append(_Problem(path, SpecError(found[0][3], message, hint)))
     return problems
 
@@ -606,7 +621,10 @@ class _Builder:
         self.build_coordinates()
         gravity = self.build_gravity()
         bodies = self.build_bodies()
-        joints = self.build_joints(self.body_names)
+        used: dict[str, str] = {}  # coordinate -> the joint it drives (arm rows and joints alike)
+        arm_bodies, arm_joints = self.build_arm(used)
+        bodies = arm_bodies + bodies  # the arm first: bodies in `bodies` may hang from its links
+        joints = arm_joints + self.build_joints(self.body_names, arm_joints, used)
         springs, dampers = self.build_elements(self.body_names)
         loads = self.build_loads(self.body_names)
         gforces = self.build_generalized_forces()
@@ -686,7 +704,20 @@ class _Builder:
                     value = self.expr(vpath, spec.value, {})
                     if value is None:
                         continue
-            if value is not None and symbol.is_positive and not value.is_positive:
+            choices: tuple[sp.Expr, ...] | None = None
+            if spec.range is not None or spec.choices is not None or spec.step is not None:
+                allowed = self.parameter_choices(path, name, spec, dim)
+                if allowed is None:
+                    continue
+                choices, range_unit, dim = allowed
+                unit = range_unit or unit
+                self.dims[symbol] = dim
+                if value is None:
+                    value = choices[(len(choices) - 1) // 2] if spec.range is not None else choices[0]
+                elif value not in choices:
+                    self.error((*path, "value"), f"the value of parameter '{name}' is not one of its allowed values")
+                    continue
+            if value is not None and symbol.is_positive and not all(v.is_positive for v in (choices or (value,))):
                 # a zero or negative value: the symbol must not be assumed positive, or
                 # sqrt(a**2) would become a before the value is put in
                 dims = self.dims.pop(symbol)
@@ -696,8 +727,70 @@ class _Builder:
             latex = spec.latex if spec.latex is not None else sp.latex(symbol)
             where = self.smap.key_location(path)
             self.parameters.append(
-                Parameter(name, symbol, value, latex, spec.description, unit, where, self.dims.get(symbol))
+                Parameter(name, symbol, value, latex, spec.description, unit, where, self.dims.get(symbol), choices)
             )
+
+    def parameter_choices(
+        self, path: KeyPath, name: str, spec: S.ParameterSpec, declared: Dimension | None
+    ) -> tuple[tuple[sp.Expr, ...], str | None, Dimension | None] | None:
+        """The allowed values (exact, SI) of a parameter with a ``range`` or ``choices`` (variants of a
+        tutorial sheet), its unit as written and its dimension; None after reporting an error."""
+        if spec.range is not None and spec.choices is not None:
+            self.error((*path, "choices"), f"parameter '{name}' has both a range and choices; give one of them")
+            return None
+        if spec.step is not None and spec.range is None:
+            self.error((*path, "step"), f"parameter '{name}' has a step but no range", "write range: [lo, hi]")
+            return None
+        factor: sp.Expr = sp.Integer(1)
+        dim = declared
+        if spec.unit is not None:
+            upath = (*path, "unit")
+            try:
+                factor, udim = parse_unit(spec.unit)
+            except ExprError as exc:
+                self.errors.append(SpecError(self.smap.expr_location(upath, exc.offset), exc.message, exc.hint))
+                return None
+            if declared is not None and udim != declared and spec.dimension is not None:
+                self.error(
+                    upath,
+                    f"parameter '{name}' is declared as {_expected_dimension(spec.dimension)}, "
+                    f"but its unit '{spec.unit}' is {_found_dimension(udim)}",
+                )
+                return None
+            dim = udim
+        key = "range" if spec.range is not None else "choices"
+        try:
+            if spec.range is not None:
+                lo, hi = (number_to_rational(v) for v in spec.range)
+                if hi < lo:
+                    self.error((*path, key), f"the range of parameter '{name}' goes down: write [lo, hi] with lo <= hi")
+                    return None
+                step = number_to_rational(spec.step) if spec.step is not None else (hi - lo) / 10
+                if hi == lo:
+                    step = sp.Integer(1)
+                if step <= 0:
+                    self.error((*path, "step"), f"the step of parameter '{name}' must be positive")
+                    return None
+                count = int(sp.floor((hi - lo) / step)) + 1
+                if count > MAX_CHOICES:
+                    self.error(
+                        (*path, "step"),
+                        f"the range of parameter '{name}' has {count} values; the limit is {MAX_CHOICES}",
+                        "use a larger step",
+                    )
+                    return None
+                numbers = [lo + k * step for k in range(count)]
+            else:
+                assert spec.choices is not None
+                numbers = [number_to_rational(v) for v in spec.choices]
+                for i, n in enumerate(numbers):
+                    if n in numbers[:i]:
+                        self.error((*path, key, i), f"choice {spec.choices[i]} of parameter '{name}' is listed twice")
+                        return None
+        except ExprError as exc:
+            self.error((*path, key), f"parameter '{name}': {exc.message}")
+            return None
+        return tuple(n * factor for n in numbers), spec.unit, dim
 
     def build_coordinates(self) -> None:
         self.check_listed_twice("coordinates")
@@ -787,6 +880,13 @@ class _Builder:
         # every declared body counts as known, even one with errors, so that joints, springs and
         # loads that refer to it are not reported as well
         self.body_names = {*self.doc.bodies, *self.dropped_names("bodies")}
+        if self.doc.arm is not None:
+            self.body_names |= set(self.doc.arm.links)
+        self.body_names |= {str(u[2]) for u in self.dropped if len(u) == 3 and tuple(u[:2]) == _ARM_LINKS}
+        written = self.data.get("arm")
+        if "arm" in self.dropped_keys and isinstance(written, dict) and isinstance(written.get("links"), dict):
+            # the arm was set aside for a shape error: its links still count as declared bodies
+            self.body_names |= {str(k) for k in written["links"]}
         for name, spec in self.doc.bodies.items():
             path: KeyPath = ("bodies", name)
             self._check_name(path, name, "body")
@@ -949,17 +1049,32 @@ class _Builder:
         return Part(name, shape, mass, density, tuple(dims), at, axis, rotation, inertia, self.smap.key_location(path))
 
     # -- joints ----------------------------------------------------------------------------
-    def build_joints(self, bodies: set[str]) -> list[Joint]:
+    def build_joints(
+        self, bodies: set[str], arm: list[Joint] | None = None, used: dict[str, str] | None = None
+    ) -> list[Joint]:
+        """The joints of `joints`; ``arm`` are those of the DH table (already built), ``used`` the
+        coordinates they drive."""
         out: list[Joint] = []
-        children: dict[str, str] = {}  # body -> the joint that places it
-        links: list[tuple[str, str, str]] = []  # (joint, parent, child) of every well-formed link
-        used: dict[str, str] = {}
+        # body -> the joint that places it
+        children: dict[str, str] = {j.child: j.name for j in arm or []}
+        # (joint, parent, child) of every well-formed link
+        links: list[tuple[str, str, str]] = [(j.name, j.parent, j.child) for j in arm or []]
+        used = {} if used is None else used
+        arm_joints = {j.name for j in arm or []}
         consts = self.symbols()
         known = sorted(bodies | {GROUND})
         for name, spec in self.doc.joints.items():
             path: KeyPath = ("joints", name)
             self._check_name(path, name, "joint")
             ok = True
+            if name in arm_joints:
+                self.error(
+                    path,
+                    f"joint '{name}' is also the name of a joint of the arm; give one of them another name",
+                    "an arm row's joint is called joint<i> unless its `joint` key names it",
+                    key=True,
+                )
+                ok = False
             if spec.child == GROUND:
                 self.error(
                     (*path, "child"),
@@ -1064,7 +1179,8 @@ class _Builder:
                 for ax, angle in rots:
                     r = r * rotation_about(ax, angle)
                 rotation = sp.ImmutableMatrix(r)
-            if not ok or axis is None or origin is None or offset is None or rots is None:
+            motor = self.motor((*path, "motor"), spec.motor, kind, f"joint '{name}'")
+            if not ok or axis is None or origin is None or offset is None or rots is None or motor is None:
                 continue
             out.append(
                 Joint(
@@ -1079,11 +1195,272 @@ class _Builder:
                     offset,
                     spec.angle == "absolute",
                     self.smap.key_location(path),
+                    rotor_inertia=motor[0],
+                    gear_ratio=motor[1],
                 )
             )
         self.placed = dict(children)
         self.check_loops(links)
         return out
+
+    def motor(
+        self, path: KeyPath, spec: S.MotorSpec | None, kind: JointKind, owner: str
+    ) -> tuple[sp.Expr | None, sp.Expr | None] | None:
+        """(rotor inertia, gear ratio) of a joint's motor, (None, None) without one; None if bad."""
+        if spec is None:
+            return None, None
+        if kind is JointKind.FIXED:
+            self.error(path, f"{owner} is fixed, so it has no motor; found `motor`", "remove `motor`", key=True)
+            return None
+        consts = self.symbols()
+        inertia = self.expr((*path, "rotor_inertia"), spec.rotor_inertia, consts, "inertia", "a rotor inertia")
+        ratio: sp.Expr | None = sp.Integer(1)
+        if spec.gear_ratio is not None:
+            # revolute: rotor turns per joint turn (a plain number); prismatic: rotor radians per metre
+            dim = "dimensionless" if kind is JointKind.REVOLUTE else None
+            ratio = self.expr((*path, "gear_ratio"), spec.gear_ratio, consts, dim, "a gear ratio")
+        values = {p.symbol: p.value for p in self.parameters if p.value is not None}
+        if inertia is not None and inertia.subs(values).is_negative:
+            self.error(
+                (*path, "rotor_inertia"),
+                f"the rotor inertia of {owner} must not be negative; found '{spec.rotor_inertia}'",
+            )
+            inertia = None
+        if ratio is not None and spec.gear_ratio is not None and ratio.subs(values).is_nonpositive:
+            self.error(
+                (*path, "gear_ratio"),
+                f"the gear ratio of {owner} must be positive (rotor speed / joint speed); found '{spec.gear_ratio}'",
+                "a motor turning the other way has the same reflected inertia n^2 J_m: give |n|",
+            )
+            ratio = None
+        if inertia is None or ratio is None:
+            return None
+        return inertia, (ratio if spec.gear_ratio is not None else None)
+
+    # -- the arm: a Denavit-Hartenberg table, desugared into bodies and joints ----------------
+    def build_arm(self, used: dict[str, str]) -> tuple[list[Body], list[Joint]]:
+        """One body and one joint per row of `arm.links`, placed exactly as the DH matrices place them.
+
+        modified (Craig), A_i = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta_i) Tz(d_i): the row's joint has
+        origin (a_{i-1}, 0, 0) + Rx(alpha_{i-1}) (0, 0, d_i), the fixed rotation Rx(alpha_{i-1}) and axis
+        z (a prismatic row: origin (a_{i-1}, 0, 0), rotation Rx(alpha_{i-1}) Rz(theta_i), sliding along z),
+        and the body frame is DH frame i.
+
+        standard (Spong, Paul), A_i = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i): a joint cannot put fixed
+        transforms after its motion, so the body frame of link i is the frame after Rz(theta_i) Tz(d_i)
+        (on joint axis i, where Craig puts frame i), and DH frame i = body frame Tx(a_i) Rx(alpha_i). The
+        link's centre of mass and inertia, given in DH frame i, are moved into the body frame exactly:
+        c' = (a_i, 0, 0) + Rx(alpha_i) c and J' = Rx(alpha_i) J Rx(alpha_i)^T; the next row's joint then
+        starts from (a_i, 0, 0) turned by Rx(alpha_i), as a modified row would.
+        """
+        spec = self.doc.arm
+        if spec is None:
+            return [], []
+        if not spec.links and not any(len(u) == 3 and tuple(u[:2]) == _ARM_LINKS for u in self.dropped):
+            self.error(("arm", "links"), "the arm has no links; expected one row per link, from the base outward")
+            return [], []
+        from tutgen.engine.kinematics import rotation_about
+
+        x_axis = sp.ImmutableMatrix([1, 0, 0])
+        z_axis = sp.ImmutableMatrix([0, 0, 1])
+
+        def rot(axis: sp.ImmutableMatrix, angle: sp.Expr) -> sp.Matrix:
+            return sp.eye(3) if angle == 0 else rotation_about(axis, angle)
+
+        consts = self.symbols()
+        kin_names = self.symbols(coords=True)
+        by_q = {c.q: c for c in self.coords.values()}
+        standard = spec.convention == "standard"
+        other_joints = set(self.doc.joints)
+        bodies: list[Body] = []
+        joints: list[Joint] = []
+        names: dict[str, str] = {}  # joint name -> its row
+        parent = GROUND
+        before = (sp.Integer(0), sp.Integer(0))  # standard: the previous row's (a, alpha); frame 0 is the world
+        for i, (name, row) in enumerate(spec.links.items(), start=1):
+            path: KeyPath = (*_ARM_LINKS, name)
+            where = f"arm link '{name}'"
+            self._check_name(path, name, "link")
+            ok = True
+            if name in self.params or name in self.coords:
+                self.error(
+                    path,
+                    f"'{name}' is already the name of a {'parameter' if name in self.params else 'coordinate'}"
+                    "; give the link another name",
+                    key=True,
+                )
+                ok = False
+            if name in self.doc.bodies:
+                self.error(
+                    path,
+                    f"'{name}' is both a link of the arm and a body in `bodies`; give one of them another name",
+                    key=True,
+                )
+                ok = False
+            joint_name = row.joint if row.joint is not None else f"joint{i}"
+            jpath: KeyPath = (*path, "joint") if row.joint is not None else path
+            if row.joint is not None:
+                self._check_name(jpath, joint_name, "joint")
+            if joint_name in names or joint_name in other_joints:
+                first = f"the joint of arm link '{names[joint_name]}'" if joint_name in names else "a joint in `joints`"
+                self.error(
+                    jpath,
+                    f"the joint of {where} is called '{joint_name}', which is already {first}; expected a new name",
+                    "name it with the row's `joint` key",
+                    key=row.joint is None,
+                )
+                ok = False
+            names.setdefault(joint_name, name)
+            theta = self.expr((*path, "theta"), row.theta, kin_names, "angle")
+            d = self.expr((*path, "d"), row.d, kin_names, "length")
+            a = self.expr((*path, "a"), row.a, consts, "length")
+            alpha = self.expr((*path, "alpha"), row.alpha, consts, "angle")
+            kind, coord, offset = self._dh_variable(path, where, row, theta, d, by_q, used, joint_name)
+            ok &= kind is not None
+            body = self._dh_body(path, name, row, consts)
+            motor = self.motor((*path, "motor"), row.motor, kind or JointKind.REVOLUTE, where)
+            here_a, here_alpha = before if standard else (a, alpha)
+            if standard:
+                before = (a, alpha)
+            if not ok or None in (theta, d, a, alpha, here_a, here_alpha, body, motor, offset):
+                parent = name
+                continue
+            assert kind is not None and body is not None and motor is not None and coord is not None
+            rx = rot(x_axis, here_alpha)
+            if kind is JointKind.REVOLUTE:
+                origin = sp.Matrix([here_a, 0, 0]) + rx * sp.Matrix([0, 0, d])
+                rotation = rx
+            else:
+                origin = sp.Matrix([here_a, 0, 0])
+                rotation = rx * rot(z_axis, theta)
+            if standard:  # the link's data, given in DH frame i, into the body frame (see the docstring)
+                body = self._dh_moved(body, a, rot(x_axis, alpha))
+            bodies.append(body)
+            joints.append(
+                Joint(
+                    joint_name,
+                    kind,
+                    parent,
+                    name,
+                    coord,
+                    z_axis,
+                    sp.ImmutableMatrix(origin.applyfunc(sp.expand)),
+                    sp.ImmutableMatrix(sp.Matrix(rotation).applyfunc(sp.expand)),
+                    offset,
+                    False,
+                    self.smap.key_location(path),
+                    rotor_inertia=motor[0],
+                    gear_ratio=motor[1],
+                )
+            )
+            parent = name
+        return bodies, joints
+
+    def _dh_variable(
+        self,
+        path: KeyPath,
+        where: str,
+        row: S.DHLinkSpec,
+        theta: sp.Expr | None,
+        d: sp.Expr | None,
+        by_q: dict[sp.Expr, Coordinate],
+        used: dict[str, str],
+        joint_name: str,
+    ) -> tuple[JointKind | None, Coordinate | None, sp.Expr | None]:
+        """The joint variable of a DH row: which of theta and d holds a coordinate, and the constant beside it."""
+        if theta is None or d is None:
+            return None, None, None
+        found = {key: sorted(e.free_symbols & by_q.keys(), key=str) for key, e in (("theta", theta), ("d", d))}
+        declared = ", ".join(self.coords) or "none"
+        if found["theta"] and found["d"]:
+            self.error(
+                (*path, "d"),
+                f"{where} uses a coordinate in both `theta` ('{row.theta}') and `d` ('{row.d}'); expected one "
+                "joint variable: in `theta` (a revolute joint) or in `d` (a prismatic joint), the other a constant",
+            )
+            return None, None, None
+        if not found["theta"] and not found["d"]:
+            self.error(
+                path,
+                f"{where} has no joint variable: neither `theta` nor `d` uses a coordinate (declared: {declared}); "
+                "expected a coordinate in `theta` (revolute) or in `d` (prismatic)",
+                "e.g. theta: q1; a link that does not move goes in `bodies`, with a fixed joint",
+                key=True,
+            )
+            return None, None, None
+        key = "theta" if found["theta"] else "d"
+        kind = JointKind.REVOLUTE if key == "theta" else JointKind.PRISMATIC
+        value, written = (theta, row.theta) if key == "theta" else (d, row.d)
+        if row.type is not None and row.type != kind.value:
+            self.error(
+                (*path, "type"),
+                f"{where} is declared {row.type}, but its coordinate is in `{key}`, which makes it {kind.value}; "
+                f"expected the coordinate in `{'theta' if row.type == 'revolute' else 'd'}`",
+            )
+            return None, None, None
+        q = found[key][0]
+        offset = sp.expand(value - q)
+        if len(found[key]) > 1 or offset.free_symbols & by_q.keys():
+            self.error(
+                (*path, key),
+                f"expected `{key}` of {where} to be one coordinate plus a constant (e.g. 'q2 + pi/2'), "
+                f"found '{written}'",
+            )
+            return None, None, None
+        coord = by_q[q]
+        if coord.name in used:
+            self.error(
+                (*path, key),
+                f"coordinate '{coord.name}' already drives joint '{used[coord.name]}'; "
+                "expected one joint per coordinate",
+            )
+            return None, None, None
+        used[coord.name] = joint_name
+        expected = "angle" if kind is JointKind.REVOLUTE else "length"
+        if coord.dimension is not None and coord.dimension != expected:
+            self.error(
+                (*path, key),
+                f"{where} is {kind.value}, so its coordinate must be {_article(expected)} {expected}; "
+                f"found '{coord.name}', declared as {_article(coord.dimension)} {coord.dimension}",
+            )
+            return None, None, None
+        self.dims.setdefault(coord.q, DIMENSIONS[expected])
+        return kind, coord, offset
+
+    def _dh_body(self, path: KeyPath, name: str, row: S.DHLinkSpec, consts: Mapping[str, sp.Expr]) -> Body | None:
+        """The link as a body given by mass, centre of mass and inertia (in DH frame i), or massless."""
+        parts: list[Part] = []
+        if row.mass is not None:
+            mass = self.expr((*path, "mass"), row.mass, consts, "mass", "a mass")
+            com = self.vector((*path, "com"), row.com, consts, "length")
+            inertia = self.inertia_matrix((*path, "inertia"), row.inertia, consts)
+            if mass is None or com is None or (row.inertia is not None and inertia is None):
+                return None
+            shape = Shape.GENERAL if inertia is not None else Shape.POINT
+            eye = sp.ImmutableMatrix(sp.eye(3))
+            parts.append(Part(name, shape, mass, None, (), com, None, eye, inertia, self.smap.location(path)))
+        elif row.inertia is not None or row.com is not None:
+            given = "`com`" if row.com is not None else "`inertia`"
+            self.error(path, f"arm link '{name}' gives {given} but no `mass`; expected a `mass` with it", key=True)
+            return None
+        return Body(name, tuple(parts), None, None, (), self.smap.key_location(path), True)
+
+    @staticmethod
+    def _dh_moved(body: Body, a: sp.Expr, rx: sp.Matrix) -> Body:
+        """A standard-convention link's data from DH frame i into its body frame: c' = (a, 0, 0) + Rx c,
+        J' = Rx J Rx^T (DH frame i is the body frame moved by a along x and turned by Rx)."""
+        parts = []
+        for p in body.parts:
+            at = (sp.Matrix([a, 0, 0]) + rx * sp.Matrix(p.at)).applyfunc(sp.expand)
+            inertia = None if p.inertia is None else (rx * sp.Matrix(p.inertia) * rx.T).applyfunc(sp.expand)
+            parts.append(
+                dataclasses.replace(
+                    p,
+                    at=sp.ImmutableMatrix(at),
+                    inertia=None if inertia is None else sp.ImmutableMatrix(inertia),
+                )
+            )
+        return dataclasses.replace(body, parts=tuple(parts))
 
     def check_loops(self, links: list[tuple[str, str, str]]) -> None:
         """Every chain of parents must end at the ground: report each loop once, at its first joint."""
@@ -1295,7 +1672,7 @@ class _Builder:
         # keys set aside for shape errors (or unknown ones, perhaps a misspelt `bodies`) may be what
         # is missing here: guess nothing about them
         unsure = bool(self.dropped_keys - {"tutgen", "title", "statement", "gravity", "ask"})
-        has_bodies = bool(self.doc.bodies or self.doc.joints or self.body_names)
+        has_bodies = bool(self.doc.bodies or self.doc.joints or self.body_names or self.doc.arm)
         has_bodies |= bool(self.dropped_names("joints"))
         if spec is None:
             if self.coords and not has_bodies and not unsure:
@@ -1308,6 +1685,7 @@ class _Builder:
             return None, None
         if has_bodies:
             given = "`bodies`" if self.doc.bodies or self.body_names else "`joints`"
+            given = "`arm`" if self.doc.arm is not None else given
             self.error(
                 ("energy",),
                 f"the spec gives both `energy` and {given}; expected the energy, or the bodies, not both",
