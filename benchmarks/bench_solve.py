@@ -23,7 +23,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))  # run from a checkout without installing
-SPECS = sorted((ROOT / "specs" / "tutorial-1").glob("*.yaml"))
+SPECS = sorted((ROOT / "specs" / "tutorial-1").glob("p*.yaml"))
 
 
 def wall(cmd: list[str], repeat: int) -> float:
@@ -35,7 +35,7 @@ def wall(cmd: list[str], repeat: int) -> float:
     return statistics.median(times)
 
 
-def mechanics_times(system, derivation) -> tuple[float, float] | None:  # noqa: ANN001
+def mechanics_times(system, derivation) -> tuple[float, float] | None:
     """Seconds for LagrangesMethod and KanesMethod to form mass matrix and forcing from the same
     point masses (None when a body has rotational inertia: this reference handles particles)."""
     import sympy as sp
@@ -89,7 +89,7 @@ def main() -> int:
         all_time = wall([*exe, "solve", *map(str, SPECS), "--format", "json", "-o", out, "--force"], args.repeat)
     singles = {spec.name: wall([*exe, "solve", str(spec), "--format", "json"], args.repeat) for spec in SPECS}
 
-    print("command-line wall time (median of %d, interpreter start included)" % args.repeat)
+    print(f"command-line wall time (median of {args.repeat}, interpreter start included)")
     print(f"  tutgen --help                              {help_time:7.3f} s   (target < 0.3 s)")
     print(f"  tutgen solve <10 tutorial specs> --format json  {all_time:7.3f} s   (target < 5 s)")
     for name, t in singles.items():

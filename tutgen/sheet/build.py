@@ -1,0 +1,279 @@
+"""Building a sheet: derive each problem once, then every variant by substitution, gathered in memory.
+
+Nothing is written here: :func:`build_sheet` returns every file's path (relative to the output
+directory) and content, in a fixed order, and the CLI writes them only when everything succeeded. The
+output layout (docs/sheets.md)::
+
+    questions.<fmt>, solutions.<fmt>                 the sheet at the nominal values
+    variants/<id>/questions.<fmt>, solutions.<fmt>   per variant (or per student, by id)
+    variants/<id>/specs/<problem>.yaml               its concrete specs: every parameter fixed
+    variants/<id>/key-<problem>.yaml                 its answer keys, for `tutgen check`
+    variants/index.csv                               id, name and the values of each variant
+"""
+
+from __future__ import annotations
+
+import csv
+import dataclasses
+import io
+import os
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from tutgen.engine.derivation import Derivation
+from tutgen.sheet.model import Sheet
+from tutgen.sheet.variants import Variant
+
+FORMATS = ("md", "tex", "pdf")
+
+
+@dataclass(frozen=True)
+class ProblemBase:
+    """What a worker needs of one problem: shipped once to each worker."""
+
+    number: int
+    key: str
+    path: str
+    text: str
+    derivation: Derivation
+
+
+@dataclass(frozen=True)
+class Shared:
+    header: dict[str, str]
+    problems: tuple[ProblemBase, ...]
+    formats: tuple[str, ...]
+    seed: int
+    method: str
+    build: str = ""  # names one build: a worker's memo of another build's results is dropped
+
+
+@dataclass(frozen=True)
+class Job:
+    """One sheet to build: the nominal one (``variant`` None) or a variant."""
+
+    variant: Variant | None
+
+
+@dataclass(frozen=True)
+class JobResult:
+    files: tuple[tuple[str, str | bytes], ...]
+    values: tuple[tuple[str, str, str], ...]  # (problem, parameter, value as written)
+    rederived: tuple[str, ...]  # the problems derived afresh for this variant
+    derive_seconds: float
+    render_seconds: float
+
+
+@dataclass
+class SheetBuild:
+    files: list[tuple[str, str | bytes]] = field(default_factory=list)
+    derive_seconds: float = 0.0  # the symbolic derivations (once per problem, plus any variant re-derived)
+    render_seconds: float = 0.0  # substitution, views, templates, keys, concrete specs, PDFs
+    rederived: list[tuple[str, str]] = field(default_factory=list)  # (variant, problem)
+
+
+def variant_derivation(
+    base: ProblemBase, variant: str, seed: int, method: str
+) -> tuple[Derivation, dict[str, Any], bool, str]:
+    """This variant's derivation of one problem: the base derivation with the variant's values put in,
+    or, when the values change the structure, a fresh derivation of the concrete spec. Also returns the
+    values, whether it was derived afresh, and the concrete spec's text."""
+    from tutgen.engine.lagrange import derive
+    from tutgen.sheet.variants import changes_structure, concrete_spec, sample, with_values
+    from tutgen.spec.validate import load_system_text
+
+    system = base.derivation.system
+    values = sample(system, base.key, variant, seed)
+    concrete = concrete_spec(base.text, base.path, system, values)
+    if changes_structure(system, values):
+        return derive(load_system_text(concrete, base.path), method), values, True, concrete
+    fixed = with_values(system, values)
+    return substituted(base.derivation, fixed), values, False, concrete
+
+
+@dataclass(frozen=True)
+class VariantDerivation(Derivation):
+    """A derivation with a variant's values: the same symbolic results, and a :meth:`numeric` that
+    replaces the parameters by their values with ``xreplace`` (exact; the symbols are atoms, so nothing
+    else is needed) and remembers each result, as the views and the answer key ask for the same ones."""
+
+    _memo: dict[Any, Any] = field(default_factory=dict, compare=False, repr=False)
+
+    def numeric(self, expr: Any) -> Any:
+        values = self.values
+        if not values or not hasattr(expr, "xreplace"):
+            return expr
+        try:
+            return self._memo[expr]
+        except (KeyError, TypeError):
+            pass
+        out = expr.xreplace(values)
+        try:
+            self._memo[expr] = out
+        except TypeError:  # an unhashable (mutable) matrix
+            pass
+        return out
+
+
+def substituted(derivation: Derivation, system: Any) -> VariantDerivation:
+    """``derivation`` with ``system`` (the same problem, other parameter values) in its place.
+
+    Everything the engine derives is symbolic in the parameters, except the principal moments and axes,
+    which it computes from the numbers: those are computed again, as the engine does, from this system.
+    """
+    from tutgen.engine.inertia import principal_axes
+
+    fields = {f.name: getattr(derivation, f.name) for f in dataclasses.fields(Derivation)}
+    fields["system"] = system
+    if system.values != derivation.system.values:
+        values = system.values
+        fields["principal"] = tuple(principal_axes(bi.inertia_origin.subs(values)) for bi in derivation.inertia)
+    return VariantDerivation(**fields)
+
+
+#: Per process: (seed, method, problem, values) -> (problem view, key results, concrete spec, derived afresh).
+_memo: dict[Any, Any] = {}
+
+
+def build_job(shared: Shared, job: Job) -> JobResult:
+    """Every file of one sheet (nominal or a variant); runs in a worker."""
+    from tutgen.sheet.render import answer_key, key_results, problem_view, render_sheet
+    from tutgen.sheet.variants import quantity_text, sample
+
+    if _memo.get("build") != shared.build:
+        _memo.clear()
+        _memo["build"] = shared.build
+    t_derive = 0.0
+    start = time.perf_counter()
+    views: list[dict[str, Any]] = []
+    files: list[tuple[str, str | bytes]] = []
+    values_out: list[tuple[str, str, str]] = []
+    rederived: list[str] = []
+    prefix = ""
+    header = dict(shared.header)
+    if job.variant is not None:
+        prefix = f"variants/{job.variant.id}/"
+        header["label"] = job.variant.label
+        for base in shared.problems:
+            t0 = time.perf_counter()
+            values = sample(base.derivation.system, base.key, job.variant.id, shared.seed)
+            memo_key = (shared.seed, shared.method, base.number, base.key, base.text, tuple(values.items()))
+            if memo_key not in _memo:
+                # a variant with the same values as one this worker has built already (a problem that
+                # does not vary, or varies little) reuses its results: the same input gives the same text
+                d, values, fresh, concrete = variant_derivation(base, job.variant.id, shared.seed, shared.method)
+                if fresh:
+                    t_derive += time.perf_counter() - t0
+                view = problem_view(base.number, d, solution=True)
+                _memo[memo_key] = (view, key_results(d), concrete, fresh)
+            view, results, concrete, fresh = _memo[memo_key]
+            if fresh:
+                rederived.append(base.key)
+            views.append(view)
+            params = {p.name: p for p in base.derivation.system.parameters}
+            values_out += [(base.key, n, quantity_text(params[n], v)) for n, v in values.items()]
+            files.append((f"{prefix}specs/{base.key}.yaml", concrete))
+            key = answer_key(results, f"specs/{base.key}.yaml", job.variant.label)
+            files.append((f"{prefix}key-{base.key}.yaml", key))
+    else:
+        derivations = [substituted(b.derivation, b.derivation.system) for b in shared.problems]
+        views = [problem_view(b.number, d, solution=True) for b, d in zip(shared.problems, derivations, strict=True)]
+    context = {**header, "problems": views}
+    for kind in ("questions", "solutions"):
+        tex = None
+        for fmt in shared.formats:
+            if fmt == "md":
+                files.append((f"{prefix}{kind}.md", render_sheet(context, kind, "md")))
+            else:
+                tex = tex if tex is not None else render_sheet(context, kind, "tex")
+                if fmt == "tex":
+                    files.append((f"{prefix}{kind}.tex", tex))
+                else:
+                    from tutgen.render.pdf import compile_pdf
+
+                    files.append((f"{prefix}{kind}.pdf", compile_pdf(tex)))
+    total = time.perf_counter() - start
+    return JobResult(tuple(files), tuple(values_out), tuple(rederived), t_derive, total - t_derive)
+
+
+def derive_problems(
+    sheet: Sheet, method: str = "lagrange", timeout: float | None = None
+) -> tuple[list[Derivation], float]:
+    """Each problem's derivation, once (raises DerivationError naming the spec); and the seconds taken."""
+    from tutgen.limits import derive_with_deadline
+
+    start = time.perf_counter()
+    derivations = [derive_with_deadline(p.system, method, timeout) for p in sheet.problems]
+    return derivations, time.perf_counter() - start
+
+
+def build_sheet(
+    sheet: Sheet,
+    *,
+    formats: Sequence[str] = ("md",),
+    variants: Sequence[Variant] = (),
+    seed: int = 0,
+    executor: Any = None,
+    method: str = "lagrange",
+    timeout: float | None = None,
+    derivations: Sequence[Derivation] | None = None,
+    on_done: Callable[[], None] | None = None,
+) -> SheetBuild:
+    """Every file of the sheet and of its variants, in a fixed order (see the module's docstring)."""
+    from tutgen.sheet.executor import SerialExecutor
+
+    out = SheetBuild()
+    if derivations is None:
+        derivations, out.derive_seconds = derive_problems(sheet, method, timeout)
+    shared = Shared(
+        header={"title": sheet.title, "course": sheet.course, "date": sheet.date, "label": ""},
+        problems=tuple(
+            ProblemBase(p.number, p.key, str(p.path), p.text, d)
+            for p, d in zip(sheet.problems, derivations, strict=True)
+        ),
+        formats=tuple(f for f in FORMATS if f in formats),
+        seed=seed,
+        method=method,
+        build=os.urandom(8).hex(),  # scopes the workers' memo only; never part of an output
+    )
+    jobs = [Job(None), *(Job(v) for v in variants)]
+    results = (executor or SerialExecutor()).map(build_job, shared, jobs, on_done)
+    for job, result in zip(jobs, results, strict=True):
+        out.files += list(result.files)
+        out.derive_seconds += result.derive_seconds
+        out.render_seconds += result.render_seconds
+        out.rederived += [(job.variant.id if job.variant else "", k) for k in result.rederived]
+    if variants:
+        out.files.append(("variants/index.csv", _index(variants, results[1:])))
+    return out
+
+
+def _index(variants: Sequence[Variant], results: Sequence[JobResult]) -> str:
+    columns: list[tuple[str, str]] = []
+    for result in results:
+        for problem, name, _ in result.values:
+            if (problem, name) not in columns:
+                columns.append((problem, name))
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(["id", "label", *(f"{p}:{n}" for p, n in columns)])
+    for v, result in zip(variants, results, strict=True):
+        got = {(p, n): text for p, n, text in result.values}
+        writer.writerow([v.id, v.label, *(got.get(c, "") for c in columns)])
+    return buf.getvalue()
+
+
+def file_names(sheet: Sheet, variants: Sequence[Variant], formats: Sequence[str]) -> list[str]:
+    """The files :func:`build_sheet` makes, in its order (known before anything is derived)."""
+    fmts = [f for f in FORMATS if f in formats]
+    names = [f"{kind}.{fmt}" for kind in ("questions", "solutions") for fmt in fmts]
+    for v in variants:
+        prefix = f"variants/{v.id}/"
+        for p in sheet.problems:
+            names += [f"{prefix}specs/{p.key}.yaml", f"{prefix}key-{p.key}.yaml"]
+        names += [f"{prefix}{kind}.{fmt}" for kind in ("questions", "solutions") for fmt in fmts]
+    if variants:
+        names.append("variants/index.csv")
+    return names

@@ -1,0 +1,104 @@
+"""Sheets as text: the question sheet, the solution sheet and the answer keys of one variant.
+
+The template context of a sheet (templates/{markdown,latex}/sheet-*.j2), plain data only:
+
+- ``title``, ``course``, ``date``, ``label`` (the variant's label or the student's name; may be empty),
+  ``kind`` (set by the template: "questions" or "worked solutions");
+- ``problems``: one mapping per problem, in sheet order, with ``number``, ``title``, ``statement``,
+  ``given`` and ``coordinates`` (lists of parts, as in tutgen/render/views.py), ``asked`` (texts), and
+  ``solution``: the worked solution's context from :func:`tutgen.render.views.solution_view`
+  (``sections``, ``remarks``, ``checks``).
+
+Text is raw (the templates escape it); maths is LaTeX.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from tutgen.engine.derivation import Derivation
+from tutgen.model.system import Ask
+from tutgen.render.views import given_items
+
+#: What each item of a spec's ``ask`` asks for, as a question sheet words it.
+ASKED = {
+    Ask.INERTIA: "the mass, centre of mass and inertia tensor of each body",
+    Ask.KINETIC_ENERGY: "the kinetic energy",
+    Ask.POTENTIAL_ENERGY: "the potential energy",
+    Ask.LAGRANGIAN: "the Lagrangian",
+    Ask.LAGRANGE_EQUATIONS: "Lagrange's equations, term by term",
+    Ask.EQUATIONS_OF_MOTION: "the equations of motion",
+    Ask.MATRIX_FORM: "the matrix form H(q) q'' + C(q, q') + G(q) = Q",
+    Ask.CHRISTOFFEL: "the Christoffel symbols",
+}
+
+
+def problem_view(number: int, derivation: Derivation, solution: bool) -> dict[str, Any]:
+    """One problem of a sheet: as set and, for the solution sheet, its worked solution."""
+    from tutgen.render.views import solution_view
+
+    s = derivation.system
+    view = solution_view(derivation) if solution else None
+    coords = [
+        [{"kind": "math", "tex": c.latex}] + ([{"kind": "text", "text": f": {c.description}"}] if c.description else [])
+        for c in s.coordinates
+    ]
+    asked = [ASKED[a] for a in Ask if a in s.ask]
+    if asked:  # a sentence: "Asked. The kinetic energy; the potential energy."
+        asked[0] = asked[0][:1].upper() + asked[0][1:]
+    return {
+        "number": number,
+        "title": s.title,
+        "statement": s.statement or "",
+        "given": given_items(s),
+        "coordinates": coords,
+        "asked": asked,
+        "solution": {
+            "sections": view["sections"] if view else [],
+            "remarks": view["remarks"] if view else [],
+            "checks": view["checks"] if view else [],
+        },
+    }
+
+
+def sheet_context(
+    header: dict[str, str], derivations: Sequence[Derivation], solution: bool, views: list[dict[str, Any]] | None = None
+) -> dict[str, Any]:
+    problems = views if views is not None else [problem_view(i + 1, d, solution) for i, d in enumerate(derivations)]
+    return {**header, "problems": problems}
+
+
+_ENVS: dict[str, Any] = {}
+
+
+def render_sheet(context: dict[str, Any], kind: str, fmt: str) -> str:
+    """``kind`` "questions" or "solutions", ``fmt`` "md" or "tex" (a PDF compiles the "tex")."""
+    from tutgen.render.env import latex_env, markdown_env
+
+    if fmt not in _ENVS:  # one environment per process: templates are compiled once
+        _ENVS[fmt] = markdown_env() if fmt == "md" else latex_env()
+    ext = "md" if fmt == "md" else "tex"
+    return str(_ENVS[fmt].get_template(f"sheet-{kind}.{ext}.j2").render(**context))
+
+
+def answer_key(results: str | Derivation, spec_name: str, student: str) -> str:
+    """The answer key of one problem of one variant, in the answers format of ``tutgen check``
+    (docs/check.md): every result of ``tutgen solve --format json``, with this variant's numbers.
+    ``results``: the variant's derivation, or the text :func:`key_results` made of it."""
+    import yaml
+
+    head = {"spec": spec_name, "student": student}
+    text = yaml.safe_dump(head, sort_keys=False, allow_unicode=True, width=100)
+    text += results if isinstance(results, str) else key_results(results)
+    return f"# The answer key of {spec_name}: check it with `tutgen check {spec_name} THIS_FILE`.\n" + text
+
+
+def key_results(derivation: Derivation) -> str:
+    """The results part of an answer key (YAML)."""
+    import yaml
+
+    from tutgen.render.jsonout import derivation_to_json
+
+    results = derivation_to_json(derivation)["results"]
+    return yaml.safe_dump(results, sort_keys=False, allow_unicode=True, width=100, default_flow_style=None)
