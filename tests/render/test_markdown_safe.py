@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import all_specs, solved
+from tests.conftest import ROOT, all_specs, solved
 
 FORBIDDEN = [
     r"\\label\b",
@@ -75,3 +75,36 @@ joints:
     for shown in (r"m = 2.5\ \mathrm{kg}", r"a = 20\ \mathrm{cm}", r"g = 9.81\ \mathrm{m/s^2}", r"= 30\ \mathrm{deg}"):
         assert shown in given, (shown, given)
     assert "frac" not in given
+
+
+def test_results_too_long_to_read_are_printed_as_the_recursive_program(monkeypatch):
+    """Past PROGRAM_BUDGET operations a serial arm's H, C, G are printed as the straight-line program
+    (every x_k used is defined before use), past PRINT_BUDGET entry by entry; the symbolic PUMA's
+    180 000 operations otherwise make 7 MB of Markdown."""
+    import re
+
+    from tutgen.render import views
+    from tutgen.render.markdown import render_markdown
+
+    _, d, _ = solved(str(ROOT / "specs" / "arms" / "scara.yaml"))
+    assert d.program is not None
+    whole = render_markdown(d)
+    assert "intermediate quantities" not in whole and "H = \\begin{bmatrix}" in whole
+
+    monkeypatch.setattr(views, "PRINT_BUDGET", 0)
+    entries = render_markdown(d)
+    assert "H_{11}" in entries and "H = \\begin{bmatrix}" not in entries and "intermediate" not in entries
+    assert "too many to print here" in entries  # the Christoffel symbols are left to the JSON
+
+    monkeypatch.setattr(views, "PROGRAM_BUDGET", 0)
+    program = render_markdown(d)
+    assert "intermediate quantities" in program
+    defined: set[str] = set()
+    for line in re.findall(r"(x_\{\d+\}) &= ([^\\\n]*(?:\\[^\\\n][^\\\n]*)*)", program):
+        name, rhs = line
+        used = set(re.findall(r"x_\{\d+\}", rhs))
+        assert used <= defined, f"{name} uses {used - defined} before it is defined"
+        defined.add(name)
+    assert len(defined) >= 10
+    for i in range(1, 5):
+        assert f"H_{{{i}{i}}} &= " in program and f"C_{{{i}}} &= " in program and f"G_{{{i}}} &= " in program

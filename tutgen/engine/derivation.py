@@ -18,6 +18,7 @@ from tutgen.model.system import System
 
 if TYPE_CHECKING:  # newton_euler.py imports this module
     from tutgen.engine.newton_euler import NewtonEuler
+    from tutgen.engine.recursive import NestedDynamics
 
 
 @dataclass(frozen=True)
@@ -82,6 +83,9 @@ class Derivation:
     checks: tuple[Check, ...] = ()
     newton_euler: NewtonEuler | None = None  # the same equations body by body, checked against Lagrange's
     method: str = "both"  # what the reader asked to see: "both", "lagrange" or "newton-euler"
+    # serial arms: the same H, C q_dot and G as a straight-line program of named intermediates
+    # (tutgen.engine.recursive.NestedDynamics), printed instead of entries too long to read
+    program: NestedDynamics | None = None
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

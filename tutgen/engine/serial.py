@@ -749,6 +749,8 @@ def derive_serial(
     keys = [(i, j, k) for i in range(n) for j in range(n) for k in range(n)]
 
     checkpoint("checks")
+    from tutgen.engine.recursive import nested_dynamics
+
     report = numeric_checks(system, dyn)
     checks = [
         Check(
@@ -809,6 +811,7 @@ def derive_serial(
         remarks=tuple(remarks),
         checks=tuple(checks),
         method=method,
+        program=nested_dynamics(system),
     )
     # the dimensional check of checks.py is cheap; its eigenvalue check lambdifies H (seconds at 6 DOF),
     # so the numeric one above replaces it

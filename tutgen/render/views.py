@@ -128,6 +128,10 @@ def _unit(unit: str) -> str:
 #: form, H, C and G are printed entry by entry, and the Christoffel symbols are left to the JSON output
 #: (a fully symbolic 6-DOF arm has a million operations of them). Small problems are never affected.
 PRINT_BUDGET = 4000
+#: beyond this many operations even entry by entry is unreadable (the fully symbolic PUMA: 180 000);
+#: a serial arm's H, C and G are then printed as the recursive program that computes them
+PROGRAM_BUDGET = 40000
+PROGRAM_CHUNK = 24  # definitions per display (an aligned block cannot break across a page)
 
 
 def _ops(*exprs: Any) -> int:
@@ -293,11 +297,14 @@ def solution_view(d: Derivation) -> dict[str, Any]:
             "$H(q)\\ddot q + C(q,\\dot q) + G(q) = Q$, with $H$ read off "
             "$T = \\tfrac12 \\dot q^T H \\dot q$ and $G = \\partial U/\\partial q$.",
         )
-        if _ops(d.mass_matrix, d.coriolis_vector, d.gravity_vector) > PRINT_BUDGET:
+        size = _ops(d.mass_matrix, d.coriolis_vector, d.gravity_vector)
+        if size > PROGRAM_BUDGET and d.program is not None and not s.springs:
+            sec["blocks"] += _program_blocks(d, tex, num, size, Ask.MATRIX_FORM in s.ask)
+        elif size > PRINT_BUDGET:
             sec["blocks"] += _entry_by_entry(d, tex, num, Ask.MATRIX_FORM in s.ask)
         else:
             sec["blocks"].append(display(f"H = {tex(num(d.mass_matrix))}"))
-        if Ask.MATRIX_FORM in s.ask and _ops(d.mass_matrix, d.coriolis_vector, d.gravity_vector) <= PRINT_BUDGET:
+        if Ask.MATRIX_FORM in s.ask and size <= PRINT_BUDGET:
             sec["blocks"].append(
                 display(
                     f"C = {tex(num(d.coriolis_vector))},\\quad G = {tex(num(d.gravity_vector))},"
@@ -514,4 +521,47 @@ def _entry_by_entry(d: Derivation, tex: TexPrinter, numeric: Any, with_c_g: bool
         for name, vec in (("C", d.coriolis_vector), ("G", d.gravity_vector), ("Q", d.generalized_forces)):
             for i in range(n):
                 blocks.append(display(tex.equation(f"{name}_{{{i + 1}}}", num(vec[i]))))
+    return blocks
+
+
+def _program_blocks(d: Derivation, tex: TexPrinter, numeric: Any, size: int, with_c_g: bool) -> list[Block]:
+    """H, C and G of a serial arm as the straight-line program of tutgen.engine.recursive: the
+    intermediate quantities x_k of a recursive Newton-Euler pass (C q_dot with q_ddot = 0 and no gravity,
+    G with the arm at rest) and of the composite-rigid-body algorithm (H), in evaluation order."""
+    program = d.program
+    assert program is not None
+
+    def num(e: Any) -> Any:
+        return _decimals(numeric(e))
+
+    n = d.mass_matrix.shape[0]
+    outputs = (
+        (program.mass_matrix, program.coriolis_vector, program.gravity_vector) if with_c_g else (program.mass_matrix,)
+    )
+    needed = program.needed(*outputs)
+    blocks: list[Block] = [
+        para(
+            prose(
+                f"Written out, the entries of $H$, $C$ and $G$ have {size} operations. They are computed here "
+                f"by the recursion that defines them instead: {len(needed)} intermediate quantities $x_k$, "
+                "each from earlier ones (a recursive Newton-Euler pass in the link frames gives $C$ with "
+                "$\\ddot q = 0$ and no gravity, and $G$ with the arm at rest; the composite-rigid-body "
+                "algorithm gives $H$). The JSON output has the entries written out."
+            )
+        )
+    ]
+    for start in range(0, len(needed), PROGRAM_CHUNK):
+        lines = [f"{tex(x)} &= {tex(num(e))}" for x, e in needed[start : start + PROGRAM_CHUNK]]
+        blocks.append(display("\\begin{aligned}" + " \\\\ ".join(lines) + "\\end{aligned}"))
+    blocks.append(para(prose("$H$ is symmetric, $H_{ji} = H_{ij}$; its entries on and above the diagonal:")))
+    h_lines = [f"H_{{{i + 1}{j + 1}}} &= {tex(num(program.mass_matrix[i, j]))}" for i in range(n) for j in range(i, n)]
+    for start in range(0, len(h_lines), PROGRAM_CHUNK):
+        blocks.append(
+            display("\\begin{aligned}" + " \\\\ ".join(h_lines[start : start + PROGRAM_CHUNK]) + "\\end{aligned}")
+        )
+    if with_c_g:
+        lines = [f"C_{{{i + 1}}} &= {tex(num(program.coriolis_vector[i]))}" for i in range(n)]
+        lines += [f"G_{{{i + 1}}} &= {tex(num(program.gravity_vector[i]))}" for i in range(n)]
+        lines += [f"Q_{{{i + 1}}} &= {tex(num(d.generalized_forces[i]))}" for i in range(n)]
+        blocks.append(display("\\begin{aligned}" + " \\\\ ".join(lines) + "\\end{aligned}"))
     return blocks
