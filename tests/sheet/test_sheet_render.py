@@ -47,4 +47,5 @@ def test_sheet_templates_show_the_variant_and_escape_text() -> None:
     assert "\\title{Tutorial \\#1 \\& more: worked solutions}" in tex
     assert "\\textit{Ada \\{x\\} \\textbackslash{}input}" in tex
     assert "100\\% linear" in tex and "\\subsection{Equations of motion}" in tex
-    assert "\\frac{x_{ddot}}" not in tex and "\\frac{\\ddot{x}}{5}" in tex  # m = 0.2 kg substituted
+    # m = 0.2 kg substituted, printed as a decimal like the data (not 1/5), rates dotted
+    assert "x_{ddot}" not in tex and "0.2 \\ddot{x}" in tex and "\\frac{\\ddot{x}}{5}" not in tex

@@ -164,11 +164,18 @@ def given_items(system: System) -> list[list[Part]]:
     return items
 
 
-def solution_view(d: Derivation) -> dict[str, Any]:
-    """The template context for a worked solution."""
+def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
+    """The template context for a worked solution. With ``decimals`` (a tutorial sheet's variant, whose
+    data are decimals like 1.5 kg and 0.6 m) every fraction of a number is printed as a decimal
+    (83.39 q_1, not 16677 q_1/200); otherwise only long ones are (see :func:`_decimals`)."""
     s = d.system
     tex = TexPrinter(s)
     num = d.numeric
+    if decimals and s.values:
+
+        def num(expr: Any) -> Any:
+            return _all_decimals(d.numeric(expr))
+
     sections: list[dict[str, Any]] = []
 
     given = given_items(s)
@@ -503,6 +510,15 @@ def _decimals(expr: Any) -> Any:
     if not isinstance(expr, sp.Basic):
         return expr
     return expr.xreplace({r: sp.Float(r, 15) for r in expr.atoms(sp.Rational) if r.q > 100})
+
+
+def _all_decimals(expr: Any) -> Any:
+    """Every non-integer rational of an expression as a decimal (printed to 4 significant figures)."""
+    if isinstance(expr, sp.MatrixBase):
+        return expr.applyfunc(_all_decimals)
+    if not isinstance(expr, sp.Basic):
+        return expr
+    return expr.xreplace({r: sp.Float(r, 15) for r in expr.atoms(sp.Rational) if r.q != 1})
 
 
 def _entry_by_entry(d: Derivation, tex: TexPrinter, numeric: Any, with_c_g: bool) -> list[Block]:

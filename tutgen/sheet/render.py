@@ -39,7 +39,7 @@ def problem_view(number: int, derivation: Derivation, solution: bool) -> dict[st
     from tutgen.render.views import solution_view
 
     s = derivation.system
-    view = solution_view(derivation) if solution else None
+    view = solution_view(derivation, decimals=True) if solution else None
     coords = [
         [{"kind": "math", "tex": c.latex}] + ([{"kind": "text", "text": f": {c.description}"}] if c.description else [])
         for c in s.coordinates
