@@ -704,11 +704,17 @@ def derive_serial(
     """
     import dataclasses
 
-    from tutgen.engine import lagrange
     from tutgen.engine.checks import dimension_checks
     from tutgen.engine.derivation import Check
     from tutgen.engine.kinematics import Kinematics
-    from tutgen.engine.lagrange import _degeneracy_remarks, _generalized_forces, _spring_energy, _zero_remarks
+    from tutgen.engine.lagrange import (
+        _degeneracy_remarks,
+        _generalized_forces,
+        _rotor_remark,
+        _rotors,
+        _spring_energy,
+        _zero_remarks,
+    )
     from tutgen.engine.tidy import tidy
     from tutgen.errors import DerivationError
     from tutgen.limits import checkpoint
@@ -783,13 +789,8 @@ def derive_serial(
                 system.origin,
             )
     remarks = [REMARK_FAST_PATH.format(n=n)]
-    rotor_remark = getattr(lagrange, "_rotor_remark", None)  # the rotors' wording lives with the general route
-    if rotor_remark is not None:
-        remarks += [
-            rotor_remark(system, q.index(j.coordinate.q), j.reflected_inertia)
-            for j in system.joints
-            if j.coordinate is not None and j.reflected_inertia is not None
-        ]
+    # the rotors' wording lives with the general route
+    remarks += [_rotor_remark(system, i, reflected) for i, reflected in _rotors(system)]
     remarks += _degeneracy_remarks(system, h, None, t_total, u_total, forces, eom)
     remarks += _zero_remarks(system, inertia, u_total, forces)
     derivation = Derivation(

@@ -241,19 +241,14 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
         )
         sec = section("Energies", intro)
         blocks = sec["blocks"]
-        long_t = _ops(d.kinetic_energy) > PRINT_BUDGET
+        t_size = _ops(d.kinetic_energy)
+        long_t = t_size > PRINT_BUDGET
         for e in d.energies:
             blocks.append(display(tex.equation(f"T_{{{_tex_name(e.name)}}}", num(e.kinetic))))
         only_t = Ask.EQUATIONS_OF_MOTION not in s.ask and Ask.KINETIC_ENERGY in s.ask
         if long_t:
             blocks.append(display("T = \\tfrac12\\, \\dot q^T H(q)\\, \\dot q"))
-            blocks.append(
-                para(
-                    prose(
-                        f"with $H$ of the matrix form below (written out, $T$ has {_ops(d.kinetic_energy)} operations)."
-                    )
-                )
-            )
+            blocks.append(para(prose(f"with $H$ of the matrix form below (written out, $T$ has {t_size} operations).")))
         else:
             blocks.append((boxed if only_t else display)(tex.equation("T", num(d.kinetic_energy))))
         if d.potential_energy is not None and Ask.POTENTIAL_ENERGY in s.ask:
@@ -282,11 +277,12 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
             )
         sections.append(sec)
 
-    long_eom = d.equations_of_motion is not None and _ops(d.equations_of_motion) > PRINT_BUDGET
+    eom_size = _ops(d.equations_of_motion) if d.equations_of_motion is not None else 0
+    long_eom = eom_size > PRINT_BUDGET
     if d.equations_of_motion is not None and Ask.EQUATIONS_OF_MOTION in s.ask and long_eom:
         sec = section(
             "Equations of motion",
-            f"Written out, the {len(s.coordinates)} equations have {_ops(d.equations_of_motion)} operations: "
+            f"Written out, the {len(s.coordinates)} equations have {eom_size} operations: "
             "equation $i$ is row $i$ of the matrix form below,",
         )
         sec["blocks"].append(boxed("H(q)\\,\\ddot q + C(q,\\dot q) + G(q) = Q"))

@@ -73,18 +73,11 @@ def changes_structure(system: System, values: Mapping[str, sp.Expr]) -> bool:
 # --- numbers as written ---------------------------------------------------------------------
 
 
-def written_number(p: Parameter, value: sp.Expr) -> sp.Expr:
-    """``value`` (SI) in the parameter's unit as written (``0.15`` m with unit ``cm`` -> 15)."""
-    from tutgen.spec.units import in_unit
-
-    return in_unit(value, p.unit)
-
-
 def quantity_text(p: Parameter, value: sp.Expr) -> str:
     """The value as a spec writes it: ``3.5 kg``, ``0.5`` or an expression."""
-    from tutgen.spec.units import decimal_text
+    from tutgen.spec.units import decimal_text, in_unit
 
-    number = written_number(p, value)
+    number = in_unit(value, p.unit)
     if number.is_Rational:
         text = decimal_text(number)
         if p.unit and "/" not in text:
