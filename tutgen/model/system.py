@@ -218,6 +218,8 @@ class System:
     potential_energy: sp.Expr | None = None
     ask: frozenset[Ask] = field(default_factory=frozenset)
     origin: Location = field(default_factory=lambda: Location("<spec>"))
+    # how many significant figures decimals are printed with (None: the renderer's default, 4)
+    significant_figures: int | None = None
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:
