@@ -23,7 +23,7 @@ SPEC_FORMAT_VERSION = 1
 # ---------------------------------------------------------------------------------------------
 
 
-def _describe(value: Any) -> str:
+def describe(value: Any) -> str:
     """A user-facing name for what was found (never a Python repr of a class)."""
     if value is None:
         return "nothing (null)"
@@ -41,7 +41,7 @@ def _describe(value: Any) -> str:
 def _expr_scalar(value: Any) -> Any:
     if isinstance(value, bool) or not isinstance(value, (str, int, float)):
         raise PydanticCustomError(
-            "tutgen_expr", "expected an expression or a number, found {found}", {"found": _describe(value)}
+            "tutgen_expr", "expected an expression or a number, found {found}", {"found": describe(value)}
         )
     return value
 
@@ -51,14 +51,14 @@ def _vector3(value: Any) -> Any:
         raise PydanticCustomError(
             "tutgen_vector",
             "expected a vector of 3 components [x, y, z], found {found}",
-            {"found": _describe(value)},
+            {"found": describe(value)},
         )
     return value
 
 
 def _text(value: Any) -> Any:
     if not isinstance(value, str):
-        raise PydanticCustomError("tutgen_text", "expected a text, found {found}", {"found": _describe(value)})
+        raise PydanticCustomError("tutgen_text", "expected a text, found {found}", {"found": describe(value)})
     return value
 
 
@@ -122,7 +122,7 @@ DimensionName = Literal[
 
 def _plain_number(value: Any) -> Any:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise PydanticCustomError("tutgen_number", "expected a number, found {found}", {"found": _describe(value)})
+        raise PydanticCustomError("tutgen_number", "expected a number, found {found}", {"found": describe(value)})
     return value
 
 
@@ -133,7 +133,7 @@ def _is_number(value: Any) -> bool:
 def _number_list(value: Any) -> Any:
     if not isinstance(value, list) or not value or not all(_is_number(v) for v in value):
         raise PydanticCustomError(
-            "tutgen_numbers", "expected a non-empty list of numbers, found {found}", {"found": _describe(value)}
+            "tutgen_numbers", "expected a non-empty list of numbers, found {found}", {"found": describe(value)}
         )
     return value
 
@@ -141,7 +141,7 @@ def _number_list(value: Any) -> Any:
 def _number_pair(value: Any) -> Any:
     if not isinstance(value, list) or len(value) != 2 or not all(_is_number(v) for v in value):
         raise PydanticCustomError(
-            "tutgen_range", "expected a range [lo, hi] of two numbers, found {found}", {"found": _describe(value)}
+            "tutgen_range", "expected a range [lo, hi] of two numbers, found {found}", {"found": describe(value)}
         )
     return value
 
@@ -180,7 +180,7 @@ def _parameters(value: Any) -> Any:
         for item in value:
             if not isinstance(item, str):
                 raise PydanticCustomError(
-                    "tutgen_names", "expected a list of names, found {found} in it", {"found": _describe(item)}
+                    "tutgen_names", "expected a list of names, found {found} in it", {"found": describe(item)}
                 )
             out[item] = {}
         return out

@@ -1,0 +1,84 @@
+"""The spec -> model step in one place: every section builder, called in turn, and the model they make.
+
+Each top-level key of a spec has one builder (a module of this package); they share one
+:class:`~tutgen.spec.builders.context.Context`, which holds the names declared so far and collects every
+problem. :func:`build_system` is the only place that knows the order: a section is built after the
+sections whose names it may use.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+from tutgen.errors import SpecErrors
+from tutgen.model.system import System
+from tutgen.spec import schema as S
+from tutgen.spec.builders.arm import build_arm
+from tutgen.spec.builders.ask import build_ask
+from tutgen.spec.builders.bodies import build_bodies, declared_bodies
+from tutgen.spec.builders.context import Context
+from tutgen.spec.builders.coordinates import build_coordinates, coordinates_with_dimensions
+from tutgen.spec.builders.elements import build_elements
+from tutgen.spec.builders.energy import build_energy
+from tutgen.spec.builders.gravity import build_gravity
+from tutgen.spec.builders.joints import build_joints, check_explicit_placement
+from tutgen.spec.builders.loads import build_generalized_forces, build_loads
+from tutgen.spec.builders.parameters import build_parameters
+from tutgen.spec.builders.texts import build_statement, build_title
+from tutgen.spec.loader import KeyPath, SourceMap
+
+
+def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped: set[KeyPath]) -> System:
+    """Check names, expressions, units and cross-references of a spec whose shape is right; build the model.
+
+    ``data`` is the spec as loaded (how it was written), ``dropped`` the parts of it set aside for shape
+    errors, already reported. Raises :class:`SpecErrors` with every problem found.
+    """
+    ctx = Context(doc, data, smap, set(dropped))
+    # The sections, in order. Parameters and coordinates come first: every expression may use their
+    # names. A new top-level spec key is one builder module and one line here, after the sections
+    # whose names it uses.
+    parameters = build_parameters(ctx)
+    build_coordinates(ctx)
+    title = build_title(ctx)
+    statement = build_statement(ctx)
+    gravity = build_gravity(ctx)
+    body_names = declared_bodies(ctx)  # with the arm's links: springs, loads, ... may refer to them
+    bodies = build_bodies(ctx)
+    used: dict[str, str] = {}  # coordinate -> the joint it drives (arm rows and joints alike)
+    arm_bodies, arm_joints = build_arm(ctx, used)
+    tree_joints, placed = build_joints(ctx, body_names, arm_joints, used)
+    springs, dampers = build_elements(ctx, body_names)
+    loads = build_loads(ctx, body_names)
+    generalized_forces = build_generalized_forces(ctx)
+    kinetic, potential = build_energy(ctx, body_names)
+    check_explicit_placement(ctx, placed)
+    if ctx.errors:
+        raise SpecErrors(ctx.errors)
+    ask = build_ask(ctx, bool(ctx.coords))
+
+    # each coordinate's dimension is known only now (a joint may have given it)
+    coordinates = coordinates_with_dimensions(ctx)
+    joints = [
+        dataclasses.replace(j, coordinate=coordinates[j.coordinate.name]) if j.coordinate is not None else j
+        for j in arm_joints + tree_joints
+    ]
+    return System(
+        title=title,
+        statement=statement,
+        source=smap.path,
+        parameters=tuple(parameters),
+        coordinates=tuple(coordinates.values()),
+        bodies=tuple(arm_bodies + bodies),  # the arm first: bodies in `bodies` may hang from its links
+        joints=tuple(joints),
+        gravity=gravity,
+        springs=tuple(springs),
+        dampers=tuple(dampers),
+        loads=tuple(loads),
+        generalized_forces=tuple(generalized_forces),
+        kinetic_energy=kinetic,
+        potential_energy=potential,
+        ask=ask,
+        origin=smap.location(()),
+    )
