@@ -6,7 +6,9 @@ A spec key, the model field and (later) the template variable share one snake_ca
 
 Only the *shape* is checked here. Names, expressions, units and cross-references (a joint's
 parent must be a body, an expression may use only declared names) are checked in
-:mod:`tutgen.spec.validate`, which turns a :class:`SpecDoc` into a :class:`tutgen.model.System`.
+:mod:`tutgen.spec.validate`, which turns a :class:`SpecDoc` into a :class:`tutgen.model.System`
+(one builder module of :mod:`tutgen.spec.builders` per top-level key); pydantic's errors on the
+shape become located messages in :mod:`tutgen.spec.schema_errors`.
 """
 
 from __future__ import annotations

@@ -39,6 +39,7 @@ def build_arm(ctx: Context, used: dict[str, str]) -> tuple[list[Body], list[Join
     if not spec.links and not ctx.dropped_arm_links():
         ctx.error(("arm", "links"), "the arm has no links; expected one row per link, from the base outward")
         return [], []
+    # imported here, as in context.rotation_matrix: spec/ borrows only this formula from engine/
     from tutgen.engine.kinematics import rotation_about
 
     x_axis = sp.ImmutableMatrix([1, 0, 0])
