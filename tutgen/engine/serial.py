@@ -41,6 +41,7 @@ import sympy as sp
 
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.inertia import BodyInertia, Principal, body_inertia
+from tutgen.engine.placement import place_joint
 from tutgen.engine.trigpoly import TrigAlgebra, TrigPoly, monomial_times_sum
 from tutgen.model.system import GROUND, Joint, JointKind, System
 
@@ -199,42 +200,44 @@ def _constants(system: System) -> list[sp.Expr]:
     return [sp.sympify(e) for e in out]
 
 
-def _rotation_transpose(alg: TrigAlgebra, joint: Joint, index: int | None) -> Mat3:
-    """^cR_p = (F Rot(a, q + offset))^T, the parent's axes seen from the child, F the fixed rotation."""
-    coef = alg.coefficient
-    f = sp.Matrix(joint.rotation)
-    ft = [[alg.const(f[k, i]) for k in range(3)] for i in range(3)]  # ft[i][k] = F[k, i]
-    if joint.kind is not JointKind.REVOLUTE or index is None:
-        return ft if f != sp.eye(3) else _identity(alg)
-    a = [coef(x) for x in joint.axis]
-    cq, sq = alg.cos(index), alg.sin(index)
-    off = sp.sympify(joint.offset)
-    if off != 0:
-        co, so = coef(sp.cos(off)), coef(sp.sin(off))
-        cq, sq = cq.scale(co) - sq.scale(so), sq.scale(co) + cq.scale(so)
-    one = alg.ring.one
-    skew = [[0 * one, -a[2], a[1]], [a[2], 0 * one, -a[0]], [-a[1], a[0], 0 * one]]
-    # Rot = a a^T + cos (E - a a^T) + sin [a]x;  Rot^T has -[a]x
-    rt = [
-        [
-            TrigPoly(alg, {(alg.zero_k, 0): a[i] * a[k]} if a[i] * a[k] else {})
-            + cq.scale((one if i == k else 0 * one) - a[i] * a[k])
-            - sq.scale(skew[i][k])
-            for k in range(3)
-        ]
-        for i in range(3)
-    ]
-    if f == sp.eye(3):
-        return rt
-    return _matmul(rt, ft)
+class _Exactly:
+    """:class:`~tutgen.engine.placement.Scalars` over exact trigonometric polynomials (nothing is named)."""
 
+    def __init__(self, alg: TrigAlgebra, index: dict[sp.Symbol, int]) -> None:
+        self.alg = alg
+        self.index = index
+        self.zero = alg.zero
+        self.one = alg.one
+        self.const = alg.const
 
-def _identity(alg: TrigAlgebra) -> Mat3:
-    return [[alg.one if i == k else alg.zero for k in range(3)] for i in range(3)]
+    def add(self, *terms: TrigPoly) -> TrigPoly:
+        return _sum(terms) if terms else self.zero
 
+    def mul(self, *factors: TrigPoly) -> TrigPoly:
+        acc = factors[0]
+        for f in factors[1:]:
+            acc = acc * f
+        return acc
 
-def _matmul(a: Mat3, b: Mat3) -> Mat3:
-    return [[_sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+    def neg(self, a: TrigPoly) -> TrigPoly:
+        return -a
+
+    def sub(self, a: TrigPoly, b: TrigPoly) -> TrigPoly:
+        return a - b
+
+    def name(self, a: TrigPoly) -> TrigPoly:
+        return a
+
+    def turn(self, joint: Joint) -> tuple[TrigPoly, TrigPoly]:
+        """cos(q + offset), sin(q + offset) by the angle-sum formulas: the offset is a constant."""
+        assert joint.coordinate is not None
+        k = self.index[joint.coordinate.q]
+        cq, sq = self.alg.cos(k), self.alg.sin(k)
+        off = sp.sympify(joint.offset)
+        if off != 0:
+            co, so = self.alg.coefficient(sp.cos(off)), self.alg.coefficient(sp.sin(off))
+            cq, sq = cq.scale(co) - sq.scale(so), sq.scale(co) + cq.scale(so)
+        return cq, sq
 
 
 def _sum(items: object) -> TrigPoly:
@@ -317,33 +320,25 @@ def serial_dynamics(system: System) -> SerialDynamics:
     grav: dict[str, Vec3] = {GROUND: [const(x) for x in gravity]}
     has_gravity = any(sp.sympify(x) != 0 for x in gravity)
 
+    scalars = _Exactly(alg, index)
+
     def place(name: str) -> None:
         if name in jv:
             return
         joint = by_child[name]
         place(joint.parent)
-        k = index[joint.coordinate.q] if joint.coordinate is not None else None
-        rt = _rotation_transpose(alg, joint, k)
-        lever = [const(x) for x in joint.origin_offset]
-        axis_c = [const(x) for x in joint.axis]  # the joint axis in the child's axes
-        if joint.kind is JointKind.PRISMATIC and k is not None:
-            f = sp.Matrix(joint.rotation)
-            slide = TrigPoly(alg, {(alg.zero_k, 0): alg.coefficient(coords[k]) + alg.coefficient(joint.offset)})
-            direction = [const(x) for x in (f * sp.Matrix(joint.axis))]
-            lever = [lv + d * slide for lv, d in zip(lever, direction, strict=True)]
+        at = place_joint(scalars, joint)
+        rt, lever = at.transpose, at.lever
         pjv, pjw = jv[joint.parent], jw[joint.parent]
         cjv: dict[int, Vec3] = {}
         cjw: dict[int, Vec3] = {}
         for col in pjw:
             cjw[col] = _apply(rt, pjw[col])
             cjv[col] = _apply(rt, _add(pjv[col], _cross(pjw[col], lever)))
-        if k is not None:
-            if joint.kind is JointKind.REVOLUTE:
-                cjw[k] = axis_c
-                cjv[k] = [zero, zero, zero]
-            else:
-                cjv[k] = axis_c
-                cjw[k] = [zero, zero, zero]
+        if at.motion is not None:
+            assert joint.coordinate is not None
+            k = index[joint.coordinate.q]
+            cjw[k], cjv[k] = at.motion
         jv[name], jw[name] = cjv, cjw
         pos[name] = _apply(rt, _add(pos[joint.parent], lever))
         grav[name] = _apply(rt, grav[joint.parent]) if has_gravity else [zero, zero, zero]
