@@ -81,28 +81,18 @@ def place_joint(ring: Scalars[S], joint: Joint) -> Placement[S]:
     Examples
     ========
     >>> from tutgen.spec.validate import load_system_text
-    >>> arm = load_system_text('''
-    ... tutgen: 1
-    ... title: one link
-    ... parameters: [m, l]
-    ... coordinates: [th]
-    ... bodies: {a: {mass: m, com: [l, 0, 0]}}
-    ... joints: {j: {type: revolute, parent: ground, child: a, coordinate: th}}
-    ... ''')
-    >>> class Plain:
-    ...     zero, one = sp.S.Zero, sp.S.One
-    ...     const = staticmethod(sp.sympify)
-    ...     add = staticmethod(lambda *t: sp.Add(*t))
-    ...     mul = staticmethod(lambda *f: sp.Mul(*f))
-    ...     neg = staticmethod(lambda a: -a)
-    ...     sub = staticmethod(lambda a, b: a - b)
+    >>> rail = load_system_text('''
+    ... {tutgen: 1, title: slider, parameters: [m, d], coordinates: [s], bodies: {cart: {mass: m}},
+    ...  joints: {rail: {type: prismatic, parent: ground, child: cart, axis: y, origin: [d, 0, 0], coordinate: s}}}
+    ... ''').joints[0]
+    >>> class Plain:  # plain sympy, nothing named
+    ...     zero, one, const = sp.S.Zero, sp.S.One, staticmethod(sp.sympify)
+    ...     add, mul = staticmethod(lambda *t: sp.Add(*t)), staticmethod(lambda *f: sp.Mul(*f))
+    ...     neg, sub = staticmethod(lambda a: -a), staticmethod(lambda a, b: a - b)
     ...     name = staticmethod(lambda a: a)
-    ...     turn = staticmethod(lambda j: (sp.cos(j.coordinate.q), sp.sin(j.coordinate.q)))
-    >>> sp.Matrix(place_joint(Plain(), arm.joints[0]).rotation)
-    Matrix([
-    [cos(th), -sin(th), 0],
-    [sin(th),  cos(th), 0],
-    [      0,        0, 1]])
+    >>> at = place_joint(Plain(), rail)
+    >>> at.lever, at.motion
+    ([d, s, 0], ([0, 0, 0], [0, 1, 0]))
     """
     f = sp.Matrix(joint.rotation)
     fixed = [[ring.const(f[i, m]) for m in range(3)] for i in range(3)]
