@@ -18,7 +18,7 @@ measurements), timed with time.perf_counter around the derivation only (imports 
 Every tool starts from the same validated model (tutgen.spec.validate.load_system_text, not timed):
 - tutgen (expanded): the fast serial engine
   tutgen.engine.serial.serial_dynamics (H, C q_dot, G); when that module does not exist yet, the
-  general engine tutgen.engine.lagrange.derive(system, method="lagrange") (which also forms the
+  general engine tutgen.engine.pipeline.derive(system, method="lagrange") (which also forms the
   Christoffel symbols, the C matrix, Lagrange's terms and the self-checks) -- the output says which.
 - tutgen (program): tutgen.engine.recursive.nested_dynamics, the same H, C q_dot, G as a straight-line
   program of named intermediates (symbolic recursive Newton-Euler + composite rigid bodies); its ops
@@ -182,7 +182,7 @@ def work_tutgen(system_name: str) -> None:
             result = serial_dynamics(system)
             return result.mass_matrix, result.coriolis_vector, result.gravity_vector
     else:
-        from tutgen.engine.lagrange import derive
+        from tutgen.engine.pipeline import derive
 
         engine = "lagrange (fallback: tutgen.engine.serial missing)"
 

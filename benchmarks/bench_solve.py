@@ -95,7 +95,7 @@ def main() -> int:
     for name, t in singles.items():
         print(f"  tutgen solve {name:<34} {t:7.3f} s   (target < 2 s)")
 
-    from tutgen.engine.lagrange import derive
+    from tutgen.engine.pipeline import derive
     from tutgen.spec.validate import load_system
 
     print("\nin-process derivation, tutgen vs sympy.physics.mechanics (same bodies, same run)")

@@ -57,7 +57,7 @@ def all_specs() -> list[Path]:
 @cache
 def solved(path: str) -> tuple[Any, Any, dict[str, Any]]:
     """(system, derivation, json document) for a spec path, derived once per session."""
-    from tutgen.engine.lagrange import derive
+    from tutgen.engine.pipeline import derive
     from tutgen.render.jsonout import derivation_to_json
     from tutgen.spec.validate import load_system
 

@@ -19,8 +19,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from tests.conftest import SPECS
+from tutgen.engine.pipeline import derive_with_deadline
 from tutgen.errors import DerivationError, DerivationTimeout, SpecErrors
-from tutgen.limits import derive_with_deadline
 from tutgen.spec.loader import load_yaml_file
 from tutgen.spec.validate import load_system_text
 

@@ -7,8 +7,9 @@ import time
 
 import pytest
 
+from tutgen.engine.pipeline import derive_with_deadline
 from tutgen.errors import EXIT_CANNOT_DERIVE, DerivationError, DerivationTimeout
-from tutgen.limits import DEFAULT_TIMEOUT, checkpoint, current_step, deadline, derive_with_deadline
+from tutgen.limits import DEFAULT_TIMEOUT, checkpoint, current_step, deadline
 from tutgen.spec.validate import load_system_text
 
 

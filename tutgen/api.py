@@ -44,7 +44,7 @@ def solve_specs(
 ) -> list[str | bytes]:
     """Load every spec (reporting all their errors at once), derive each (each within ``timeout``
     seconds, None or 0 for no limit), render each."""
-    from tutgen.limits import derive_with_deadline
+    from tutgen.engine.pipeline import derive_with_deadline
     from tutgen.spec.validate import load_system
 
     systems = []

@@ -12,15 +12,11 @@ import signal
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from tutgen.errors import DerivationTimeout
 
-if TYPE_CHECKING:
-    from tutgen.engine.derivation import Derivation
-    from tutgen.model.system import System
-
-__all__ = ["DEFAULT_TIMEOUT", "checkpoint", "current_step", "deadline", "derive_with_deadline"]
+__all__ = ["DEFAULT_TIMEOUT", "checkpoint", "current_step", "deadline"]
 
 #: Seconds a derivation may take unless ``--timeout`` says otherwise.
 DEFAULT_TIMEOUT: float = 120
@@ -81,20 +77,3 @@ def deadline(seconds: float | None) -> Iterator[None]:
         signal.signal(signal.SIGALRM, previous)
         _state["armed"] = False
         _state["expired"] = None
-
-
-def derive_with_deadline(system: System, method: str = "both", seconds: float | None = DEFAULT_TIMEOUT) -> Derivation:
-    """``tutgen.engine.lagrange.derive(system, method)``, stopped after ``seconds`` (None or 0: no limit).
-
-    ``derive`` is looked up when called, so a test that replaces it is honoured. A timeout is located at
-    the spec (``file:1:1``), like every other error about it.
-    """
-    from tutgen.engine import lagrange
-
-    try:
-        with deadline(seconds):
-            return lagrange.derive(system, method)
-    except DerivationTimeout as exc:
-        if exc.location is None:
-            exc.location = system.origin
-        raise

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner, Result
 
-import tutgen.engine.lagrange
+import tutgen.engine.pipeline
 from tests.check.helpers import TUTORIAL
 from tests.conftest import ROOT, solved
 from tutgen.check.answers import RESULT_KEYS
@@ -47,7 +47,7 @@ def cached_derive(monkeypatch: pytest.MonkeyPatch) -> None:
     """Serve ``derive`` from the session cache: the command still loads, validates and marks."""
     for spec in (P04, P05):
         solved(str(spec))
-    monkeypatch.setattr(tutgen.engine.lagrange, "derive", lambda system, *_, **__: solved(system.source)[1])
+    monkeypatch.setattr(tutgen.engine.pipeline, "derive", lambda system, *_, **__: solved(system.source)[1])
 
 
 def run(*args: str | Path) -> Result:

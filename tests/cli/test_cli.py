@@ -60,22 +60,22 @@ def run_module(
 @pytest.fixture
 def cached_derive(monkeypatch: pytest.MonkeyPatch) -> None:
     """Serve ``derive`` from the session cache: the CLI still loads, validates, renders and writes."""
-    import tutgen.engine.lagrange
+    import tutgen.engine.pipeline
 
     for spec in (P04, P05, P06):
         solved(str(spec))  # warm the cache first: solved() itself calls the real derive
-    monkeypatch.setattr(tutgen.engine.lagrange, "derive", lambda system, *_, **__: solved(system.source)[1])
+    monkeypatch.setattr(tutgen.engine.pipeline, "derive", lambda system, *_, **__: solved(system.source)[1])
 
 
 @pytest.fixture
 def broken_derive(monkeypatch: pytest.MonkeyPatch) -> None:
     """A bug in the engine."""
-    import tutgen.engine.lagrange
+    import tutgen.engine.pipeline
 
     def derive(system: object, *args: object, **kwargs: object) -> None:
         raise RuntimeError("boom in the engine")
 
-    monkeypatch.setattr(tutgen.engine.lagrange, "derive", derive)
+    monkeypatch.setattr(tutgen.engine.pipeline, "derive", derive)
 
 
 def expected_output(spec: Path, fmt: str) -> str:
@@ -279,12 +279,12 @@ def test_debug_lets_the_exception_through() -> None:
 
 
 def test_spec_that_cannot_be_derived_exits_4(monkeypatch: pytest.MonkeyPatch) -> None:
-    import tutgen.engine.lagrange
+    import tutgen.engine.pipeline
 
     def derive(system: object, *args: object, **kwargs: object) -> None:
         raise DerivationError("the kinetic energy is not a quadratic form in the velocities")
 
-    monkeypatch.setattr(tutgen.engine.lagrange, "derive", derive)
+    monkeypatch.setattr(tutgen.engine.pipeline, "derive", derive)
     result = run("solve", P10)
     assert result.exit_code == EXIT_CANNOT_DERIVE
     assert result.stderr == "error: the kinetic energy is not a quadratic form in the velocities\n"

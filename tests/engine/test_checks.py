@@ -9,7 +9,7 @@ import sympy as sp
 
 from tests.conftest import SPECS, solved
 from tutgen.engine.checks import dimension_checks, mass_matrix_checks, verify
-from tutgen.engine.lagrange import derive
+from tutgen.engine.pipeline import derive
 from tutgen.errors import DerivationError
 from tutgen.spec.validate import load_system_text
 

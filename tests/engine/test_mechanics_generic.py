@@ -43,7 +43,7 @@ from sympy.physics.mechanics import (
 from tests.conftest import ROOT, all_specs, solved
 from tests.models import negative_length, quadratic_drag, spec_models, system_of
 from tutgen.engine.inertia import body_inertia
-from tutgen.engine.lagrange import derive
+from tutgen.engine.pipeline import derive
 from tutgen.model.system import GROUND, JointKind, System
 
 STATES = 5

@@ -24,8 +24,8 @@ from sympy.physics.mechanics import KanesMethod, Point, ReferenceFrame, RigidBod
 
 from tests.conftest import SEED, SPECS, all_specs, solved
 from tests.models import spec_models, system_of
-from tutgen.engine.lagrange import derive
 from tutgen.engine.newton_euler import PROJECTION_REMARK, NEMethod, derive_newton_euler
+from tutgen.engine.pipeline import derive
 from tutgen.engine.serial import is_large_serial_chain
 from tutgen.engine.tidy import is_zero
 from tutgen.errors import EXIT_METHODS_DISAGREE, AgreementError, DerivationError

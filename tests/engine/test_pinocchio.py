@@ -52,7 +52,7 @@ from tests.engine.pinocchio_model import (  # noqa: E402
     spring_gradient,
 )
 from tests.models import spec_models, system_of  # noqa: E402
-from tutgen.engine.lagrange import derive  # noqa: E402
+from tutgen.engine.pipeline import derive  # noqa: E402
 from tutgen.model.system import JointKind, System  # noqa: E402
 from tutgen.spec.validate import load_system  # noqa: E402
 

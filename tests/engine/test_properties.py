@@ -30,7 +30,7 @@ from hypothesis import strategies as st
 
 from tests.models import planar_chain, system_of
 from tutgen.engine.inertia import body_inertia, shift_inertia
-from tutgen.engine.lagrange import derive
+from tutgen.engine.pipeline import derive
 
 DIGITS = 30
 TOL = mpmath.mpf(10) ** -20  # relative, at DIGITS digits

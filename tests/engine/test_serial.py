@@ -25,7 +25,7 @@ from tests.conftest import SPECS
 from tests.engine.test_mechanics_generic import MechanicsModel, Numeric, assert_close, cross_check
 from tests.engine.test_mechanics_generic import random_states as named_states
 from tests.models import planar_chain, system_of
-from tutgen.engine.lagrange import derive
+from tutgen.engine.pipeline import derive
 from tutgen.engine.serial import (
     LARGE,
     cse_form,

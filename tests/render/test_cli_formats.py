@@ -24,10 +24,10 @@ def run(*args: str | Path) -> Result:
 
 @pytest.fixture
 def cached_derive(monkeypatch: pytest.MonkeyPatch) -> None:
-    import tutgen.engine.lagrange
+    import tutgen.engine.pipeline
 
     solved(str(P05))
-    monkeypatch.setattr(tutgen.engine.lagrange, "derive", lambda system, *_, **__: solved(system.source)[1])
+    monkeypatch.setattr(tutgen.engine.pipeline, "derive", lambda system, *_, **__: solved(system.source)[1])
 
 
 @pytest.mark.usefixtures("cached_derive")

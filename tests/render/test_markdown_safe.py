@@ -56,7 +56,7 @@ def test_markdown_display_maths_is_fenced_on_own_lines(spec: Path) -> None:
 
 def test_given_value_is_shown_in_the_unit_it_was_written_in(tmp_path):
     """`a: 20 cm` is 1/5 m inside; the worked solution gives it back as 20 cm (not "1/5 cm")."""
-    from tutgen.engine.lagrange import derive
+    from tutgen.engine.pipeline import derive
     from tutgen.render.markdown import render_markdown
     from tutgen.spec.validate import load_system_text
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from tutgen.engine.lagrange import derive
+from tutgen.engine.pipeline import derive
 from tutgen.sheet.build import substituted
 from tutgen.sheet.render import given_items, problem_view, render_sheet
 from tutgen.sheet.variants import with_values

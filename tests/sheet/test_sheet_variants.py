@@ -10,7 +10,7 @@ import sympy as sp
 
 from tests.conftest import SPECS
 from tutgen.engine.derivation import Derivation
-from tutgen.engine.lagrange import derive
+from tutgen.engine.pipeline import derive
 from tutgen.sheet.build import ProblemBase, derive_problems, variant_derivation
 from tutgen.sheet.model import Sheet, load_sheet
 from tutgen.sheet.variants import pick, replace_parameters, sample

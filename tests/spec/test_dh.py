@@ -16,7 +16,7 @@ import sympy as sp
 
 from tutgen.engine.inertia import body_inertia
 from tutgen.engine.kinematics import Kinematics
-from tutgen.engine.lagrange import derive
+from tutgen.engine.pipeline import derive
 from tutgen.errors import SpecErrors
 from tutgen.model.system import JointKind, System
 from tutgen.spec.validate import load_system_text

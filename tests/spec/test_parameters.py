@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from tutgen.engine.lagrange import derive
+from tutgen.engine.pipeline import derive
 from tutgen.render.jsonout import derivation_to_json
 from tutgen.spec.validate import load_system_text
 

@@ -65,7 +65,7 @@ class CheckRun:
 def load_reference(spec: str | Path) -> Reference:
     """Load, validate and derive a spec (raises SpecErrors / DerivationError) as a :class:`Reference`."""
     from tutgen.check.compare import reference_from
-    from tutgen.engine.lagrange import derive
+    from tutgen.engine.pipeline import derive
     from tutgen.spec.validate import load_system
 
     system = load_system(spec)

@@ -4,6 +4,8 @@
   Its eigenvalues are computed numerically at a few random states (random positive values for the
   parameters without one, random angles and positions); semi-definite is allowed, since a coordinate
   that moves no mass gives a singular H (tutorial problem 9).
+- The matrix form must reproduce Lagrange's equations as derived term by term, H_dot - 2 C must be
+  skew-symmetric and H symmetric (:func:`matrix_form_checks`, exact).
 - Every term of every equation of motion must have the same dimension, where the dimensions of all its
   symbols are known (parameters with units or declared dimensions; a coordinate is an angle or a length,
   its velocity that per second, its acceleration that per second squared). An equation with a symbol of
@@ -16,17 +18,19 @@ equation or the matrix.
 from __future__ import annotations
 
 import random
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import mpmath
 import sympy as sp
 
 from tutgen.engine.derivation import Check, Derivation
+from tutgen.engine.kinematics import total_derivative
+from tutgen.engine.tidy import is_zero
 from tutgen.errors import DerivationError
 from tutgen.model.system import System
 from tutgen.spec.units import DIMENSIONS, Dimension, DimensionMismatch, dimension_of
 
-__all__ = ["dimension_checks", "mass_matrix_checks", "verify"]
+__all__ = ["dimension_checks", "mass_matrix_checks", "matrix_form_checks", "verify"]
 
 #: Random states at which H is evaluated.
 STATES = 5
@@ -35,6 +39,36 @@ TOLERANCE = 1e-12
 _SEED = 20261123
 _ENERGY = DIMENSIONS["energy"]
 _TIME = DIMENSIONS["time"]
+
+
+def matrix_form_checks(
+    system: System,
+    h: sp.ImmutableMatrix,
+    c_mat: sp.ImmutableMatrix,
+    eom: sp.MatrixBase,
+    lagrange: Sequence[sp.Expr],
+) -> list[Check]:
+    """The matrix form against Lagrange's equations (a difference raises: it is a tutgen bug), then
+    H_dot - 2 C skew-symmetric and H = H^T, each entry compared exactly (:func:`~tutgen.engine.tidy.is_zero`)."""
+    for i, coord in enumerate(system.coordinates):
+        zero, _ = is_zero(eom[i] - lagrange[i])
+        if not zero:
+            raise DerivationError(
+                f"internal check failed: the matrix form of the equation for '{coord.name}' differs from "
+                "Lagrange's equation; please report this spec as a tutgen bug",
+                coord.origin,
+            )
+    checks = [Check("matrix_form_equals_lagrange", True, "H q_ddot + C + G - Q equals Lagrange's equations")]
+    q = [c.q for c in system.coordinates]
+    qd = [c.qd for c in system.coordinates]
+    qdd = [c.qdd for c in system.coordinates]
+    n = len(q)
+    h_dot = h.applyfunc(lambda e: total_derivative(e, q, qd, qdd))
+    skew = h_dot - 2 * c_mat
+    ok = all(is_zero(skew[i, j] + skew[j, i])[0] for i in range(n) for j in range(i, n))
+    checks.append(Check("skew_symmetry", ok, "H_dot - 2 C is skew-symmetric" if ok else "H_dot - 2 C is NOT skew"))
+    checks.append(Check("symmetric_mass_matrix", h == h.T, "H = H^T"))
+    return checks
 
 
 def mass_matrix_checks(derivation: Derivation) -> list[Check]:
@@ -46,7 +80,7 @@ def mass_matrix_checks(derivation: Derivation) -> list[Check]:
     Examples
     ========
     >>> from tutgen.spec.validate import load_system_text
-    >>> from tutgen.engine.lagrange import derive
+    >>> from tutgen.engine.pipeline import derive
     >>> pendulum = load_system_text('''
     ... tutgen: 1
     ... title: pendulum

@@ -7,6 +7,7 @@ body carries its two Jacobians (3 x n, world components). Kinetic energy, genera
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import sympy as sp
@@ -35,6 +36,24 @@ def rotation_about(axis: sp.MatrixBase, angle: sp.Expr) -> sp.Matrix:
     skew = sp.Matrix([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
     r = c * sp.eye(3) + s * skew + (1 - c) * (a * a.T)
     return r.applyfunc(sp.expand)
+
+
+def total_derivative(
+    expr: sp.Expr, q: Sequence[sp.Symbol], qd: Sequence[sp.Symbol], qdd: Sequence[sp.Symbol]
+) -> sp.Expr:
+    """The total time derivative by the chain rule: d/dt f(q, q_dot) = f_q q_dot + f_qdot q_ddot.
+
+    Examples
+    ========
+    >>> import sympy as sp
+    >>> x, xd, xdd = sp.symbols("x x_dot x_ddot")
+    >>> total_derivative(x * xd**2, [x], [xd], [xdd])
+    2*x*x_ddot*x_dot + x_dot**3
+    """
+    out = sp.Integer(0)
+    for qi, qdi, qddi in zip(q, qd, qdd, strict=True):
+        out += sp.diff(expr, qi) * qdi + sp.diff(expr, qdi) * qddi
+    return out
 
 
 @dataclass(frozen=True)
@@ -183,10 +202,8 @@ class Kinematics:
     # -- accelerations (for Newton-Euler) ---------------------------------------------------
     def time_derivative(self, expr: sp.Expr) -> sp.Expr:
         """d/dt of an expression in q, q_dot by the chain rule: f_q q_dot + f_qdot q_ddot."""
-        out = sp.Integer(0)
-        for c in self.system.coordinates:
-            out += sp.diff(expr, c.q) * c.qd + sp.diff(expr, c.qd) * c.qdd
-        return out
+        coords = self.system.coordinates
+        return total_derivative(expr, [c.q for c in coords], [c.qd for c in coords], [c.qdd for c in coords])
 
     def acceleration(self, body: str) -> sp.Matrix:
         """a_G = d/dt (J_v q_dot) of a body's centre of mass, world components, not yet tidied."""

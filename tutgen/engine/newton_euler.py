@@ -177,7 +177,7 @@ def derive_newton_euler(system: System, derivation: Derivation, kinematics: Kine
     Examples
     ========
     >>> from tutgen.spec.validate import load_system_text
-    >>> from tutgen.engine.lagrange import derive
+    >>> from tutgen.engine.pipeline import derive
     >>> pendulum = load_system_text('''
     ... tutgen: 1
     ... title: pendulum

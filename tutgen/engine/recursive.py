@@ -37,6 +37,7 @@ from itertools import count
 import sympy as sp
 
 from tutgen.engine.inertia import centroidal_inertia, part_mass
+from tutgen.engine.placement import place_joint
 from tutgen.engine.serial import is_serial_chain
 from tutgen.errors import DerivationError
 from tutgen.model.system import GROUND, Body, Joint, JointKind, System
@@ -277,10 +278,43 @@ def _origin_inertia(prog: _Program, body: Body) -> tuple[sp.Expr, Vec, Mat]:
     return total, first, [[upper[(min(a, b), max(a, b))] for b in range(3)] for a in range(3)]
 
 
+class _Named:
+    """:class:`~tutgen.engine.placement.Scalars` over sympy expressions, each intermediate a program line."""
+
+    zero = ZERO
+    one = ONE
+
+    def __init__(self, prog: _Program, trig: dict[int, tuple[sp.Expr, sp.Expr]], index: dict[sp.Symbol, int]) -> None:
+        self.prog = prog
+        self.trig = trig
+        self.index = index
+
+    def const(self, value: sp.Expr) -> sp.Expr:
+        return sp.sympify(value)
+
+    def add(self, *terms: sp.Expr) -> sp.Expr:
+        return _sum(*terms)
+
+    def mul(self, *factors: sp.Expr) -> sp.Expr:
+        return _prod(*factors)
+
+    def neg(self, a: sp.Expr) -> sp.Expr:
+        return -a
+
+    def sub(self, a: sp.Expr, b: sp.Expr) -> sp.Expr:
+        return a - b
+
+    def name(self, a: sp.Expr) -> sp.Expr:
+        return self.prog.name(a)
+
+    def turn(self, joint: Joint) -> tuple[sp.Expr, sp.Expr]:
+        assert joint.coordinate is not None
+        return self.trig[self.index[joint.coordinate.q]]
+
+
 def _chain(system: System, prog: _Program, index: dict[sp.Symbol, int]) -> list[_Link]:
-    """The links parents first. Conventions as kinematics.py's ``_joint_frame`` and serial.py: the
-    child frame is the parent's moved to ``origin_offset`` (parent axes), turned by the fixed
-    ``rotation`` F, then by the joint motion about/along ``axis`` (axes after F): ^pR_c = F Rot(a, q)."""
+    """The links parents first, each placed by :func:`~tutgen.engine.placement.place_joint` (its
+    conventions: ^pR_c = F Rot(a, q + offset), the lever in parent axes)."""
     by_child = {j.child: j for j in system.joints}
     # sin and cos of the joint angles are the first definitions (coordinate order)
     trig: dict[int, tuple[sp.Expr, sp.Expr]] = {}
@@ -292,37 +326,16 @@ def _chain(system: System, prog: _Program, index: dict[sp.Symbol, int]) -> list[
     links: list[_Link] = []
     where: dict[str, int] = {GROUND: -1}
 
+    scalars = _Named(prog, trig, index)
+
     def place(name: str) -> int:
         if name in where:
             return where[name]
         joint = by_child[name]
         parent = place(joint.parent)
         k = index[joint.coordinate.q] if joint.coordinate is not None else None
-        f = sp.Matrix(joint.rotation)
-        axis = [sp.sympify(x) for x in joint.axis]
-        lever = [sp.sympify(x) for x in joint.origin_offset]
-        if joint.kind is JointKind.REVOLUTE and k is not None:
-            c, s = trig[k]
-            a = axis
-            skew = [[ZERO, -a[2], a[1]], [a[2], ZERO, -a[0]], [-a[1], a[0], ZERO]]
-            # Rot(a, q) = a a^T + cos (E - a a^T) + sin [a]x
-            rot = [
-                [
-                    _sum(
-                        _prod(a[i], a[j]), _prod(c, (ONE if i == j else ZERO) - _prod(a[i], a[j])), _prod(s, skew[i][j])
-                    )
-                    for j in range(3)
-                ]
-                for i in range(3)
-            ]
-            r = [[prog.name(_sum(*(_prod(f[i, m], rot[m][j]) for m in range(3)))) for j in range(3)] for i in range(3)]
-        else:
-            r = [[prog.name(sp.sympify(f[i, j])) for j in range(3)] for i in range(3)]
-            if joint.kind is JointKind.PRISMATIC and k is not None:
-                slide = prog.name(_sum(system.coordinates[k].q, joint.offset))
-                direction = [_sum(*(_prod(f[i, m], axis[m]) for m in range(3))) for i in range(3)]
-                lever = [prog.name(_sum(lv, _prod(d, slide))) for lv, d in zip(lever, direction, strict=True)]
-        rt = [[r[j][i] for j in range(3)] for i in range(3)]
+        at = place_joint(scalars, joint)
+        axis, r, rt, lever = at.axis, at.rotation, at.transpose, at.lever
         mass, first_moment, inertia = _origin_inertia(prog, system.body(name))
         links.append(_Link(name, joint, parent, k, axis, rt, r, lever, mass, first_moment, inertia))
         where[name] = len(links) - 1

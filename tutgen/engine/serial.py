@@ -1,8 +1,9 @@
 """H(q), C(q, q_dot) q_dot and G(q) of serial arms, fast enough for a fully symbolic 6-DOF arm.
 
-The general route (:mod:`tutgen.engine.lagrange`) works in world components and tidies every entry
-with trigonometric identities, which is right for a worked solution of two or three coordinates but
-grows too fast beyond. Here, for a chain of revolute, prismatic and fixed joints from the ground:
+The general route (:mod:`tutgen.engine.lagrange`, run by :mod:`tutgen.engine.pipeline`) works in world
+components and tidies every entry with trigonometric identities, which is right for a worked solution
+of two or three coordinates but grows too fast beyond. Here, for a chain of revolute, prismatic and
+fixed joints from the ground (each placed by :func:`tutgen.engine.placement.place_joint`):
 
 - Every velocity Jacobian is kept in the link's own axes and propagated joint by joint, as in the
   velocity pass of recursive Newton-Euler: ``^c J = ^cR_p (^p J_v + ^p J_w x lever)``. ``^cR_p``
@@ -39,20 +40,25 @@ from functools import cached_property
 
 import sympy as sp
 
-from tutgen.engine.derivation import Derivation
-from tutgen.engine.inertia import BodyInertia, Principal, body_inertia
+from tutgen.engine.derivation import Check
+from tutgen.engine.inertia import body_inertia
+from tutgen.engine.placement import place_joint
 from tutgen.engine.trigpoly import TrigAlgebra, TrigPoly, monomial_times_sum
+from tutgen.errors import DerivationError
 from tutgen.model.system import GROUND, Joint, JointKind, System
 
 __all__ = [
+    "LARGE",
+    "REMARK_FAST_PATH",
     "SerialDynamics",
     "cse_form",
-    "derive_serial",
     "is_large_serial_chain",
     "is_serial_chain",
     "numeric_checks",
     "numeric_inverse_dynamics",
+    "serial_checks",
     "serial_dynamics",
+    "skew_check",
 ]
 
 Vec3 = list[TrigPoly]
@@ -199,42 +205,44 @@ def _constants(system: System) -> list[sp.Expr]:
     return [sp.sympify(e) for e in out]
 
 
-def _rotation_transpose(alg: TrigAlgebra, joint: Joint, index: int | None) -> Mat3:
-    """^cR_p = (F Rot(a, q + offset))^T, the parent's axes seen from the child, F the fixed rotation."""
-    coef = alg.coefficient
-    f = sp.Matrix(joint.rotation)
-    ft = [[alg.const(f[k, i]) for k in range(3)] for i in range(3)]  # ft[i][k] = F[k, i]
-    if joint.kind is not JointKind.REVOLUTE or index is None:
-        return ft if f != sp.eye(3) else _identity(alg)
-    a = [coef(x) for x in joint.axis]
-    cq, sq = alg.cos(index), alg.sin(index)
-    off = sp.sympify(joint.offset)
-    if off != 0:
-        co, so = coef(sp.cos(off)), coef(sp.sin(off))
-        cq, sq = cq.scale(co) - sq.scale(so), sq.scale(co) + cq.scale(so)
-    one = alg.ring.one
-    skew = [[0 * one, -a[2], a[1]], [a[2], 0 * one, -a[0]], [-a[1], a[0], 0 * one]]
-    # Rot = a a^T + cos (E - a a^T) + sin [a]x;  Rot^T has -[a]x
-    rt = [
-        [
-            TrigPoly(alg, {(alg.zero_k, 0): a[i] * a[k]} if a[i] * a[k] else {})
-            + cq.scale((one if i == k else 0 * one) - a[i] * a[k])
-            - sq.scale(skew[i][k])
-            for k in range(3)
-        ]
-        for i in range(3)
-    ]
-    if f == sp.eye(3):
-        return rt
-    return _matmul(rt, ft)
+class _Exactly:
+    """:class:`~tutgen.engine.placement.Scalars` over exact trigonometric polynomials (nothing is named)."""
 
+    def __init__(self, alg: TrigAlgebra, index: dict[sp.Symbol, int]) -> None:
+        self.alg = alg
+        self.index = index
+        self.zero = alg.zero
+        self.one = alg.one
+        self.const = alg.const
 
-def _identity(alg: TrigAlgebra) -> Mat3:
-    return [[alg.one if i == k else alg.zero for k in range(3)] for i in range(3)]
+    def add(self, *terms: TrigPoly) -> TrigPoly:
+        return _sum(terms) if terms else self.zero
 
+    def mul(self, *factors: TrigPoly) -> TrigPoly:
+        acc = factors[0]
+        for f in factors[1:]:
+            acc = acc * f
+        return acc
 
-def _matmul(a: Mat3, b: Mat3) -> Mat3:
-    return [[_sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+    def neg(self, a: TrigPoly) -> TrigPoly:
+        return -a
+
+    def sub(self, a: TrigPoly, b: TrigPoly) -> TrigPoly:
+        return a - b
+
+    def name(self, a: TrigPoly) -> TrigPoly:
+        return a
+
+    def turn(self, joint: Joint) -> tuple[TrigPoly, TrigPoly]:
+        """cos(q + offset), sin(q + offset) by the angle-sum formulas: the offset is a constant."""
+        assert joint.coordinate is not None
+        k = self.index[joint.coordinate.q]
+        cq, sq = self.alg.cos(k), self.alg.sin(k)
+        off = sp.sympify(joint.offset)
+        if off != 0:
+            co, so = self.alg.coefficient(sp.cos(off)), self.alg.coefficient(sp.sin(off))
+            cq, sq = cq.scale(co) - sq.scale(so), sq.scale(co) + cq.scale(so)
+        return cq, sq
 
 
 def _sum(items: object) -> TrigPoly:
@@ -317,33 +325,25 @@ def serial_dynamics(system: System) -> SerialDynamics:
     grav: dict[str, Vec3] = {GROUND: [const(x) for x in gravity]}
     has_gravity = any(sp.sympify(x) != 0 for x in gravity)
 
+    scalars = _Exactly(alg, index)
+
     def place(name: str) -> None:
         if name in jv:
             return
         joint = by_child[name]
         place(joint.parent)
-        k = index[joint.coordinate.q] if joint.coordinate is not None else None
-        rt = _rotation_transpose(alg, joint, k)
-        lever = [const(x) for x in joint.origin_offset]
-        axis_c = [const(x) for x in joint.axis]  # the joint axis in the child's axes
-        if joint.kind is JointKind.PRISMATIC and k is not None:
-            f = sp.Matrix(joint.rotation)
-            slide = TrigPoly(alg, {(alg.zero_k, 0): alg.coefficient(coords[k]) + alg.coefficient(joint.offset)})
-            direction = [const(x) for x in (f * sp.Matrix(joint.axis))]
-            lever = [lv + d * slide for lv, d in zip(lever, direction, strict=True)]
+        at = place_joint(scalars, joint)
+        rt, lever = at.transpose, at.lever
         pjv, pjw = jv[joint.parent], jw[joint.parent]
         cjv: dict[int, Vec3] = {}
         cjw: dict[int, Vec3] = {}
         for col in pjw:
             cjw[col] = _apply(rt, pjw[col])
             cjv[col] = _apply(rt, _add(pjv[col], _cross(pjw[col], lever)))
-        if k is not None:
-            if joint.kind is JointKind.REVOLUTE:
-                cjw[k] = axis_c
-                cjv[k] = [zero, zero, zero]
-            else:
-                cjv[k] = axis_c
-                cjw[k] = [zero, zero, zero]
+        if at.motion is not None:
+            assert joint.coordinate is not None
+            k = index[joint.coordinate.q]
+            cjw[k], cjv[k] = at.motion
         jv[name], jw[name] = cjv, cjw
         pos[name] = _apply(rt, _add(pos[joint.parent], lever))
         grav[name] = _apply(rt, grav[joint.parent]) if has_gravity else [zero, zero, zero]
@@ -669,7 +669,7 @@ def numeric_checks(system: System, dyn: SerialDynamics, states: int = 5, seed: i
 
 
 # ---------------------------------------------------------------------------------------------
-# The fast path of derive()
+# The route of derive() for large serial arms (tutgen/engine/pipeline.py assembles it)
 # ---------------------------------------------------------------------------------------------
 
 #: Serial chains with at least this many coordinates take the fast path in ``derive``: below it the
@@ -693,71 +693,12 @@ def is_large_serial_chain(system: System) -> bool:
     return len(system.coordinates) >= LARGE and is_serial_chain(system)
 
 
-def derive_serial(
-    system: System, method: str, inertia: tuple[BodyInertia, ...], principal: tuple[Principal | None, ...]
-) -> Derivation:
-    """The :class:`Derivation` of a large serial chain: H, C, G, Q, the equations of motion and the
-    Christoffel symbols, with empty ``lagrange_terms`` and no Newton-Euler (see ``REMARK_FAST_PATH``).
-
-    Q, springs and dampers use the general route's code (world kinematics are built only when a load,
-    or a spring or damper between points, needs them).
-    """
-    import dataclasses
-
-    from tutgen.engine.checks import dimension_checks
-    from tutgen.engine.derivation import Check
-    from tutgen.engine.kinematics import Kinematics
-    from tutgen.engine.lagrange import (
-        _degeneracy_remarks,
-        _generalized_forces,
-        _rotor_remark,
-        _rotors,
-        _spring_energy,
-        _zero_remarks,
-    )
-    from tutgen.engine.tidy import tidy
-    from tutgen.errors import DerivationError
-    from tutgen.limits import checkpoint
-
-    checkpoint("mass matrix, Coriolis and gravity terms (serial arm)")
-    dyn = serial_dynamics(system)
-    q = [c.q for c in system.coordinates]
-    qd = [c.qd for c in system.coordinates]
-    qdd = [c.qdd for c in system.coordinates]
-    n = len(q)
-    needs_world = bool(system.loads) or any(e.between is not None for e in (*system.springs, *system.dampers))
-    kin = Kinematics(system, {bi.name: bi.com for bi in inertia}) if needs_world else None
-
-    checkpoint("energies of springs")
-    spring_energies = tuple((s.name, _spring_energy(s, kin, system)) for s in system.springs)
-    u_springs = sp.Add(*[e for _, e in spring_energies])
-    u_total = dyn.potential_energy + u_springs
-    g_vec = dyn.gravity_vector
-    if u_springs != 0:
-        g_vec = sp.ImmutableMatrix([g_vec[i] + tidy(sp.diff(u_springs, q[i])) for i in range(n)])
-    checkpoint("generalized forces")
-    forces = _generalized_forces(system, kin, q, qd)
-    h = dyn.mass_matrix
-    t_total = sp.Add(
-        *[h[i, i] * qd[i] ** 2 / 2 for i in range(n)],
-        *[h[i, j] * qd[i] * qd[j] for i in range(n) for j in range(i + 1, n)],
-    )
-    q_vec = sp.ImmutableMatrix(forces)
-    c_vec = dyn.coriolis_vector
-    eom = sp.ImmutableMatrix(
-        [sp.Add(*[h[i, j] * qdd[j] for j in range(n)], c_vec[i], g_vec[i], -q_vec[i]) for i in range(n)]
-    )
-
-    checkpoint("Christoffel symbols")
-    zero = sp.Integer(0)
-    table = dyn.christoffel
-    first = dyn.christoffel_first_kind
-    keys = [(i, j, k) for i in range(n) for j in range(n) for k in range(n)]
-
-    checkpoint("checks")
-    from tutgen.engine.recursive import nested_dynamics
-
+def serial_checks(system: System, dyn: SerialDynamics) -> list[Check]:
+    """The fast route's checks as :class:`Check` values (:func:`numeric_checks`), and H = H^T; a failed one
+    raises :class:`~tutgen.errors.DerivationError`: a negative mass or inertia given in the spec, or else
+    a tutgen bug."""
     report = numeric_checks(system, dyn)
+    h = dyn.mass_matrix
     checks = [
         Check(
             "matrix_form_equals_newton_euler",
@@ -788,39 +729,4 @@ def derive_serial(
                 f"internal check failed: {check.name} ({check.detail}); please report this spec as a tutgen bug",
                 system.origin,
             )
-    remarks = [REMARK_FAST_PATH.format(n=n)]
-    # the rotors' wording lives with the general route
-    remarks += [_rotor_remark(system, i, reflected) for i, reflected in _rotors(system)]
-    remarks += _degeneracy_remarks(system, h, None, t_total, u_total, forces, eom)
-    remarks += _zero_remarks(system, inertia, u_total, forces)
-    derivation = Derivation(
-        system=system,
-        inertia=inertia,
-        principal=principal,
-        spring_energies=spring_energies,
-        kinetic_energy=t_total,
-        potential_energy=u_total,
-        lagrangian=t_total - u_total,
-        generalized_forces=q_vec,
-        mass_matrix=h,
-        coriolis_vector=c_vec,
-        coriolis_matrix=dyn.coriolis_matrix,
-        gravity_vector=g_vec,
-        equations_of_motion=eom,
-        christoffel={key: table.get(key, zero) for key in keys},
-        christoffel_first_kind={key: first.get(key, zero) for key in keys},
-        remarks=tuple(remarks),
-        checks=tuple(checks),
-        method=method,
-        program=nested_dynamics(system),
-    )
-    # the dimensional check of checks.py is cheap; its eigenvalue check lambdifies H (seconds at 6 DOF),
-    # so the numeric one above replaces it
-    checkpoint("checks: dimensions")
-    dims = dimension_checks(system, derivation)
-    for check in dims:
-        if not check.passed:
-            raise DerivationError(
-                f"internal check failed: {check.detail}; please report this spec as a tutgen bug", system.origin
-            )
-    return dataclasses.replace(derivation, checks=(*derivation.checks, *dims))
+    return checks

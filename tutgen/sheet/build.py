@@ -80,7 +80,7 @@ def variant_derivation(
     """This variant's derivation of one problem: the base derivation with the variant's values put in,
     or, when the values change the structure, a fresh derivation of the concrete spec. Also returns the
     values, whether it was derived afresh, and the concrete spec's text."""
-    from tutgen.engine.lagrange import derive
+    from tutgen.engine.pipeline import derive
     from tutgen.sheet.variants import changes_structure, concrete_spec, sample, with_values
     from tutgen.spec.validate import load_system_text
 
@@ -202,7 +202,7 @@ def derive_problems(
     sheet: Sheet, method: str = "lagrange", timeout: float | None = None
 ) -> tuple[list[Derivation], float]:
     """Each problem's derivation, once (raises DerivationError naming the spec); and the seconds taken."""
-    from tutgen.limits import derive_with_deadline
+    from tutgen.engine.pipeline import derive_with_deadline
 
     start = time.perf_counter()
     derivations = [derive_with_deadline(p.system, method, timeout) for p in sheet.problems]

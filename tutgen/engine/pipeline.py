@@ -1,0 +1,267 @@
+"""One derivation, stage by stage in teaching order: the engine's only orchestrator.
+
+:func:`derive` runs the stages of a worked solution, each a function of the values of the ones before:
+
+1. inertia: each body's mass, centre of mass and inertia tensors (:mod:`~tutgen.engine.inertia`);
+2. kinematics: positions, rotations and velocity Jacobians (:mod:`~tutgen.engine.kinematics`);
+3. energies and forces: T, U and H (:func:`~tutgen.engine.lagrange.energies`), the springs' energy and
+   the generalized forces Q (:mod:`~tutgen.engine.forces`);
+4. Lagrange's equations term by term (:func:`~tutgen.engine.lagrange.lagrange_equations`);
+5. the matrix form H q_ddot + C + G = Q, with 6. the Christoffel symbols of H that give C
+   (:mod:`~tutgen.engine.matrix_form`);
+7. checks: the matrix form against Lagrange's equations, H_dot - 2 C skew, H positive semi-definite,
+   dimensions (:mod:`~tutgen.engine.checks`), and the remarks (:mod:`~tutgen.engine.remarks`);
+8. Newton-Euler, checked against Lagrange (:mod:`~tutgen.engine.newton_euler`).
+
+and chooses the route: a serial arm of ``LARGE`` (4) or more coordinates
+(:func:`~tutgen.engine.serial.is_large_serial_chain`) takes the route of :mod:`~tutgen.engine.serial`
+instead of stages 2-6 and 8 (H, C and G as exact trigonometric polynomials, checked numerically).
+Every stage records itself with :func:`~tutgen.limits.checkpoint`, so a timeout names it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import sympy as sp
+
+from tutgen.engine.checks import dimension_checks, matrix_form_checks, verify
+from tutgen.engine.derivation import Derivation
+from tutgen.engine.forces import generalized_forces, rotors, spring_energies
+from tutgen.engine.inertia import BodyInertia, Principal, body_inertia, principal_axes
+from tutgen.engine.kinematics import Kinematics
+from tutgen.engine.lagrange import energies, lagrange_equations
+from tutgen.engine.matrix_form import christoffel_symbols, coriolis_terms, equations_of_motion, gravity_vector
+from tutgen.engine.newton_euler import derive_newton_euler
+from tutgen.engine.recursive import nested_dynamics
+from tutgen.engine.remarks import REMARK_CONSTANT_MASS_MATRIX, degeneracy_remarks, rotor_remark, zero_remarks
+from tutgen.engine.serial import REMARK_FAST_PATH, is_large_serial_chain, serial_checks, serial_dynamics
+from tutgen.engine.tidy import tidy
+from tutgen.errors import DerivationError, DerivationTimeout
+from tutgen.limits import DEFAULT_TIMEOUT, checkpoint, deadline
+from tutgen.model.system import System
+
+__all__ = ["METHODS", "derive", "derive_with_deadline"]
+
+METHODS = ("both", "lagrange", "newton-euler")
+
+
+def derive(system: System, method: str = "both") -> Derivation:
+    """Derive everything a spec asks for, in teaching order.
+
+    ``method`` is "both" (the default) or "newton-euler" to add the Newton-Euler derivation and its
+    agreement check when the spec has bodies (not a given energy), or "lagrange" to skip it. Lagrange's
+    route always runs: Newton-Euler is checked against it.
+
+    Examples
+    ========
+    >>> from tutgen.spec.validate import load_system_text
+    >>> block = load_system_text('''
+    ... {tutgen: 1, title: block on a spring, parameters: [m, k], coordinates: [x], bodies: {block: {mass: m}},
+    ...  joints: {slide: {type: prismatic, parent: ground, child: block, axis: x, coordinate: x}},
+    ...  springs: {wall: {stiffness: k, extension: x}}}
+    ... ''')
+    >>> derive(block).equations_of_motion[0]
+    k*x + m*x_ddot
+
+    See ``tests/models.py`` for more named example systems (cart-pole, double pendulum).
+    """
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {', '.join(METHODS)}, not {method!r}")
+    inertia, principal = mass_properties(system)
+    if not system.coordinates:
+        return Derivation(system=system, inertia=inertia, principal=principal)
+    if is_large_serial_chain(system):  # issue 8: the general route's expansions would run to pages
+        return _serial_route(system, method, inertia, principal)
+    return _general_route(system, method, inertia, principal)
+
+
+def derive_with_deadline(system: System, method: str = "both", seconds: float | None = DEFAULT_TIMEOUT) -> Derivation:
+    """:func:`derive`, stopped after ``seconds`` (None or 0: no limit) by :func:`tutgen.limits.deadline`.
+
+    ``derive`` is looked up when called, so a test that replaces it is honoured. A timeout is located at
+    the spec (``file:1:1``), like every other error about it.
+    """
+    try:
+        with deadline(seconds):
+            return derive(system, method)
+    except DerivationTimeout as exc:
+        if exc.location is None:
+            exc.location = system.origin
+        raise
+
+
+def mass_properties(system: System) -> tuple[tuple[BodyInertia, ...], tuple[Principal | None, ...]]:
+    """Stage 1: each body's inertia, and the principal axes of its inertia about the body frame's origin
+    (with the parameters' numeric values, where they have them)."""
+    checkpoint("inertia")
+    inertia = tuple(body_inertia(b) for b in system.bodies)
+    values = system.values
+    principal = tuple(principal_axes(bi.inertia_origin.subs(values) if values else bi.inertia_origin) for bi in inertia)
+    return inertia, principal
+
+
+def _general_route(
+    system: System, method: str, inertia: tuple[BodyInertia, ...], principal: tuple[Principal | None, ...]
+) -> Derivation:
+    """Stages 2-8 for any tree of joints, bodies placed by position, or a given T and U."""
+    q = [c.q for c in system.coordinates]
+    qd = [c.qd for c in system.coordinates]
+    qdd = [c.qdd for c in system.coordinates]
+
+    # 2. kinematics: a spec that gives T and U has none
+    kin: Kinematics | None = None
+    if system.kinetic_energy is None:
+        checkpoint("kinematics")
+        kin = Kinematics(system, {bi.name: bi.com for bi in inertia})
+
+    # 3. energies and forces
+    energy = energies(system, inertia, kin)
+    remarks = [rotor_remark(system, i, reflected) for i, reflected in rotors(system)] if kin is not None else []
+    checkpoint("energies of springs")
+    springs = spring_energies(system, kin)
+    t_total = energy.kinetic_energy
+    u_total = tidy(energy.potential_energy + sum((e for _, e in springs), sp.Integer(0)))
+    lagrangian = t_total - u_total
+    checkpoint("generalized forces")
+    forces = generalized_forces(system, kin, q, qd)
+
+    # 4. Lagrange's equations, term by term
+    terms, eom_lagrange = lagrange_equations(system, lagrangian, forces)
+
+    # 5.-6. the matrix form, C from the Christoffel symbols of H
+    checkpoint("mass matrix")
+    hm = sp.ImmutableMatrix(energy.mass_matrix)
+    checkpoint("Christoffel symbols")
+    first, tutorial = christoffel_symbols(energy.mass_matrix, q)
+    checkpoint("Coriolis and gravity terms")
+    c_vec, c_mat = coriolis_terms(first, qd)
+    g_vec = gravity_vector(u_total, q)
+    q_vec = sp.ImmutableMatrix(forces)
+    eom = equations_of_motion(hm, c_vec, g_vec, q_vec, qd, qdd)
+
+    # 7. checks and remarks
+    checkpoint("checks")
+    checks = matrix_form_checks(system, hm, c_mat, eom, eom_lagrange)
+    det = tidy(hm.det(method="berkowitz")) if len(q) <= 4 else None
+    remarks += degeneracy_remarks(system, hm, det, t_total, u_total, forces, eom)
+    remarks += zero_remarks(system, inertia, u_total, forces)
+    if all(first[key] == 0 for key in first):
+        remarks.append(REMARK_CONSTANT_MASS_MATRIX)
+    derivation = Derivation(
+        system=system,
+        inertia=inertia,
+        principal=principal,
+        kinematics=energy.kinematics,
+        energies=energy.bodies,
+        spring_energies=springs,
+        kinetic_energy=t_total,
+        potential_energy=u_total,
+        lagrangian=lagrangian,
+        lagrange_terms=terms,
+        generalized_forces=q_vec,
+        mass_matrix=hm,
+        coriolis_vector=c_vec,
+        coriolis_matrix=c_mat,
+        gravity_vector=g_vec,
+        equations_of_motion=eom,
+        christoffel=tutorial,
+        christoffel_first_kind=first,
+        mass_matrix_determinant=det,
+        remarks=tuple(remarks),
+        checks=tuple(checks),
+        method=method,
+    )
+    checkpoint("checks: mass matrix and dimensions")
+    derivation = dataclasses.replace(derivation, checks=(*derivation.checks, *verify(system, derivation)))
+
+    # 8. Newton-Euler, for bodies (a given T has no bodies to free)
+    if method == "lagrange" or kin is None or not system.bodies:
+        return derivation
+    checkpoint("Newton-Euler")
+    ne = derive_newton_euler(system, derivation, kin)
+    return dataclasses.replace(derivation, newton_euler=ne, checks=(*derivation.checks, ne.agreement))
+
+
+def _serial_route(
+    system: System, method: str, inertia: tuple[BodyInertia, ...], principal: tuple[Principal | None, ...]
+) -> Derivation:
+    """A large serial arm: H, C, G, Q, the equations of motion and the Christoffel symbols, with empty
+    ``lagrange_terms`` and no Newton-Euler (see ``REMARK_FAST_PATH``).
+
+    Q, springs and dampers are the general route's (:mod:`~tutgen.engine.forces`); world kinematics are
+    built only when a load, or a spring or damper between points, needs them.
+    """
+    checkpoint("mass matrix, Coriolis and gravity terms (serial arm)")
+    dyn = serial_dynamics(system)
+    q = [c.q for c in system.coordinates]
+    qd = [c.qd for c in system.coordinates]
+    qdd = [c.qdd for c in system.coordinates]
+    n = len(q)
+    needs_world = bool(system.loads) or any(e.between is not None for e in (*system.springs, *system.dampers))
+    kin = Kinematics(system, {bi.name: bi.com for bi in inertia}) if needs_world else None
+
+    checkpoint("energies of springs")
+    springs = spring_energies(system, kin)
+    u_springs = sp.Add(*[e for _, e in springs])
+    u_total = dyn.potential_energy + u_springs
+    g_vec = dyn.gravity_vector
+    if u_springs != 0:
+        g_vec = sp.ImmutableMatrix([g_vec[i] + tidy(sp.diff(u_springs, q[i])) for i in range(n)])
+    checkpoint("generalized forces")
+    forces = generalized_forces(system, kin, q, qd)
+    # the entries are long: sums of their parts as they are, without tidying
+    h = dyn.mass_matrix
+    t_total = sp.Add(
+        *[h[i, i] * qd[i] ** 2 / 2 for i in range(n)],
+        *[h[i, j] * qd[i] * qd[j] for i in range(n) for j in range(i + 1, n)],
+    )
+    q_vec = sp.ImmutableMatrix(forces)
+    c_vec = dyn.coriolis_vector
+    eom = sp.ImmutableMatrix(
+        [sp.Add(*[h[i, j] * qdd[j] for j in range(n)], c_vec[i], g_vec[i], -q_vec[i]) for i in range(n)]
+    )
+
+    checkpoint("Christoffel symbols")
+    zero = sp.Integer(0)
+    table = dyn.christoffel
+    first = dyn.christoffel_first_kind
+    keys = [(i, j, k) for i in range(n) for j in range(n) for k in range(n)]
+
+    checkpoint("checks")
+    checks = serial_checks(system, dyn)
+    remarks = [REMARK_FAST_PATH.format(n=n)]
+    remarks += [rotor_remark(system, i, reflected) for i, reflected in rotors(system)]
+    remarks += degeneracy_remarks(system, h, None, t_total, u_total, forces, eom)
+    remarks += zero_remarks(system, inertia, u_total, forces)
+    derivation = Derivation(
+        system=system,
+        inertia=inertia,
+        principal=principal,
+        spring_energies=springs,
+        kinetic_energy=t_total,
+        potential_energy=u_total,
+        lagrangian=t_total - u_total,
+        generalized_forces=q_vec,
+        mass_matrix=h,
+        coriolis_vector=c_vec,
+        coriolis_matrix=dyn.coriolis_matrix,
+        gravity_vector=g_vec,
+        equations_of_motion=eom,
+        christoffel={key: table.get(key, zero) for key in keys},
+        christoffel_first_kind={key: first.get(key, zero) for key in keys},
+        remarks=tuple(remarks),
+        checks=tuple(checks),
+        method=method,
+        program=nested_dynamics(system),
+    )
+    # the dimensional check of checks.py is cheap; its eigenvalue check lambdifies H (seconds at 6 DOF),
+    # so the numeric one of serial_checks replaces it
+    checkpoint("checks: dimensions")
+    dims = dimension_checks(system, derivation)
+    for check in dims:
+        if not check.passed:
+            raise DerivationError(
+                f"internal check failed: {check.detail}; please report this spec as a tutgen bug", system.origin
+            )
+    return dataclasses.replace(derivation, checks=(*derivation.checks, *dims))
