@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from tests.check.helpers import errors, mark_text, tutorial
-from tutgen.check.answers import RESULT_KEYS, Tolerance, parse_key, read_answers
+from tutgen.check.answers import MSG_NO_TOLERANCE, RESULT_KEYS, Tolerance, parse_key, read_answers
 from tutgen.errors import SpecErrors
 
 
@@ -108,6 +108,9 @@ def test_answers_result_keys_are_the_json_contract() -> None:
     assert set(ref.results) <= set(RESULT_KEYS)
 
 
+NO_TOLERANCE = MSG_NO_TOLERANCE
+
+
 @pytest.mark.parametrize(
     ("text", "expected"),
     [
@@ -122,23 +125,19 @@ def test_answers_result_keys_are_the_json_contract() -> None:
         ),
         pytest.param(
             "tolerance: {rel_tol: 1e300}\n",
-            [
-                "answers.yaml:1:1: error: an answers file may not set 'tolerance': tolerances are the instructor's (the marking key, tutgen check --key)"
-            ],
+            ["answers.yaml:1:1: error: " + NO_TOLERANCE.format(key="tolerance")],
             id="file-tolerance-refused",
         ),
         pytest.param(
             "mass_matrix: {value: [[m, 0], [0, m]], rel_tol: 1e300}\n",
-            [
-                "answers.yaml:1:40: error: an answers file may not set 'rel_tol': tolerances are the instructor's (the marking key, tutgen check --key)"
-            ],
+            ["answers.yaml:1:40: error: " + NO_TOLERANCE.format(key="rel_tol")],
             id="item-tolerance-refused",
         ),
         pytest.param(
             "mass_matrix: {value: [[m, 0], [0, m]], rounded: true}\nrel_tol: 1\n",
             [
-                "answers.yaml:1:40: error: an answers file may not set 'rounded': tolerances are the instructor's (the marking key, tutgen check --key)",
-                "answers.yaml:2:1: error: an answers file may not set 'rel_tol': tolerances are the instructor's (the marking key, tutgen check --key)",
+                "answers.yaml:1:40: error: " + NO_TOLERANCE.format(key="rounded"),
+                "answers.yaml:2:1: error: " + NO_TOLERANCE.format(key="rel_tol"),
             ],
             id="rounded-and-tolerance-key-refused",
         ),
