@@ -22,38 +22,32 @@ point the other way. Each entry is named as in the reports: ``mass_matrix[1,2]``
 from __future__ import annotations
 
 import re
-import weakref
-from dataclasses import dataclass, field, replace
-from decimal import Decimal
-from enum import StrEnum
+from dataclasses import replace
 from typing import Any
 
-import mpmath
 import sympy as sp
 
 from tutgen.check.answers import MSG_NO_TOLERANCE, TOLERANCE_KEYS, AnswerItem, AnswerSheet, Segment, Tolerance
-from tutgen.check.equivalence import (
-    MAX_SCALE,
-    MIN_SCALE,
-    NUMERIC_HOW,
-    Decision,
-    constant_factor,
-    decide,
-    groups,
-    is_acceptable_scale,
-    reduced,
-    too_large,
-)
-from tutgen.check.feedback import diagnose, number_feedback, round_half_up, significant
-from tutgen.check.key import MarkingKey
+from tutgen.check.equivalence import NUMERIC_HOW, decide, too_large
+from tutgen.check.feedback import diagnose
 from tutgen.check.limits import AnswerTimeLimit, answer_deadline
-from tutgen.check.names import DIMENSION_OF, TEXT_FIELDS, Path, entry_name, field_of, is_per_coordinate
-from tutgen.check.numeric import SEED, TRIALS, value_of_number
-from tutgen.errors import SpecError, SpecErrors
+from tutgen.check.names import Path, entry_name, field_of, is_per_coordinate
+from tutgen.check.numeric import SEED, TRIALS
+from tutgen.check.scalars import ScalarMarking, answer_text
+from tutgen.check.verdicts import (
+    ASKED_RESULTS,
+    DEFAULT_ANSWER_TIMEOUT,
+    EntryResult,
+    ItemResult,
+    Reference,
+    Status,
+    reference_from,
+    worst,
+)
+from tutgen.errors import Location, SpecError, SpecErrors
 from tutgen.render.jsonout import expr_text  # the spec grammar, as the JSON writes it
-from tutgen.spec.expr import ExprError, did_you_mean, number_to_rational, parse_expression
+from tutgen.spec.expr import did_you_mean
 from tutgen.spec.loader import KeyPath
-from tutgen.spec.units import Dimension, parse_quantity, parse_unit
 
 __all__ = [
     "ASKED_RESULTS",
@@ -70,23 +64,12 @@ __all__ = [
     "entry_name",
     "equal_how",
     "expr_text",
+    "key_problems",
     "reference_from",
+    "unmarked_items",
+    "worst",
 ]
 
-#: Seconds one answer (one entry) may take to mark (``tutgen check --timeout``).
-DEFAULT_ANSWER_TIMEOUT = 5.0
-#: What a spec's ``ask`` asks for, as result keys: the items a file with no answer is missing.
-ASKED_RESULTS = {
-    "inertia": ("inertia_tensor",),
-    "kinetic_energy": ("kinetic_energy",),
-    "potential_energy": ("potential_energy",),
-    "lagrangian": ("lagrangian",),
-    "lagrange_equations": ("lagrange_terms",),
-    "equations_of_motion": ("equations_of_motion",),
-    "matrix_form": ("mass_matrix", "coriolis_vector", "gravity_vector"),
-    "christoffel": ("christoffel",),
-}
-_NUMBER_RE = re.compile(r"\s*[-+]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][-+]?[0-9]+)?")
 _CHRISTOFFEL_KEY_RE = re.compile(
     r"[A-Za-z]?\[?\s*([0-9]+)\s*,\s*([0-9]+)\s*,\s*([0-9]+)\s*\]?"  # 1,1,2  h[1,1,2]
     r"|[A-Za-z]?([1-9])([1-9])([1-9])"  # 112  h112  c112
@@ -98,196 +81,12 @@ _TABLE_WORDS = {
 }
 
 
-class Status(StrEnum):
-    """The verdict on an entry or an item. An item has the worst of its entries', in this order:
-    wrong, time_limit, cannot_evaluate, missing, correct."""
-
-    CORRECT = "correct"
-    WRONG = "wrong"
-    MISSING = "missing"
-    CANNOT_EVALUATE = "cannot_evaluate"  # not finite, not real or lost to cancellation at most states
-    TIME_LIMIT = "time_limit"  # could not be checked within the time (or memory) limit
-
-
-#: Worst first: the status an item takes from its entries.
-_SEVERITY = (Status.WRONG, Status.TIME_LIMIT, Status.CANNOT_EVALUATE, Status.MISSING)
-
-
-def worst(statuses: list[Status]) -> Status:
-    """The worst of ``statuses`` (correct when there are none to worry about)."""
-    for status in _SEVERITY:
-        if status in statuses:
-            return status
-    return Status.CORRECT
-
-
-@dataclass(frozen=True)
-class EntryResult:
-    """The verdict on one entry (a scalar) of an answer."""
-
-    name: str  # as in the reports: mass_matrix[1,2]
-    status: Status
-    how: str = ""  # how a correct entry was decided ("exact: ...", "numeric: ...", "within rel_tol ...")
-    feedback: str = ""  # what differs (wrong), what is missing, or a remark
-    location: str = ""  # file:line:col of the answer
-    given: str | None = None  # the answer as written
-    expected: str | None = None  # the result, as in tutgen's JSON
-
-
-@dataclass(frozen=True)
-class ItemResult:
-    """The verdict on one answer of the file (a top-level key): the worst of its entries."""
-
-    name: str
-    status: Status
-    entries: tuple[EntryResult, ...]
-    remarks: tuple[str, ...] = ()
-    location: str = ""
-
-    @property
-    def problems(self) -> tuple[EntryResult, ...]:
-        """The entries that are wrong or missing."""
-        return tuple(e for e in self.entries if e.status is not Status.CORRECT)
-
-
-@dataclass(frozen=True, eq=False)
-class Reference:
-    """What answers are compared with: one spec's results and the names its expressions use.
-
-    Plain data and sympy symbols only, so it can be sent to worker processes. Compared by identity,
-    so that each process parses a reference's result expressions once (:func:`_result_cache`).
-    """
-
-    spec: str
-    title: str
-    results: dict[str, Any]
-    symbols: dict[str, sp.Symbol]
-    values: dict[sp.Symbol, sp.Expr]
-    coordinates: tuple[str, ...]
-    state: frozenset[sp.Symbol]  # every q, q_dot, q_ddot
-    forces: frozenset[sp.Symbol] = field(default_factory=frozenset)  # symbols of the generalized forces
-    asked: tuple[str, ...] = ()  # result keys the spec asks for (its ``ask``), those it has
-    key: MarkingKey = field(default_factory=MarkingKey)  # the instructor's marking key
-    answer_timeout: float | None = DEFAULT_ANSWER_TIMEOUT  # seconds per entry (None: no limit)
-
-
-def reference_from(system: Any, derivation: Any, spec: str) -> Reference:
-    """The :class:`Reference` of a derived spec (a System and its Derivation)."""
-    from tutgen.render.jsonout import derivation_to_json
-
-    doc = derivation_to_json(derivation)
-    symbols: dict[str, sp.Symbol] = {p.name: p.symbol for p in system.parameters}
-    state: set[sp.Symbol] = set()
-    for c in system.coordinates:
-        symbols[c.name], symbols[f"{c.name}_dot"], symbols[f"{c.name}_ddot"] = c.q, c.qd, c.qdd
-        state |= {c.q, c.qd, c.qdd}
-    forces: set[sp.Symbol] = set()
-    if derivation.generalized_forces is not None:
-        forces = set(derivation.generalized_forces.free_symbols) - state
-    return Reference(
-        spec=spec,
-        title=system.title,
-        results=doc["results"],
-        symbols=symbols,
-        values=dict(system.values),
-        coordinates=tuple(c.name for c in system.coordinates),
-        state=frozenset(state),
-        forces=frozenset(forces),
-        asked=tuple(k for k in doc["results"] if k in {r for a in system.ask for r in ASKED_RESULTS.get(str(a), ())}),
-    )
-
-
-# ---------------------------------------------------------------------------------------------
-# Marking one answers file
-# ---------------------------------------------------------------------------------------------
-
-
-#: Parsed result expressions, per reference (for as long as the reference lives).
-_result_cache: weakref.WeakKeyDictionary[Reference, dict[str, sp.Expr]] = weakref.WeakKeyDictionary()
-
-
-class _UnknownName(Exception):
-    """An answer that uses a name the problem does not have: a wrong answer, with this feedback."""
-
-
-@dataclass
-class _Parsed:
-    expr: sp.Expr
-    literal: str | None = None  # the number as written, for rounding checks
-    unit_factor: sp.Expr = sp.S.One  # SI value of one written unit
-    dimension: Dimension | None = None  # of a quantity with a unit
-
-
-class _Marker:
-    """Marks the items of one sheet against one reference, collecting answers-file errors."""
+class _Marker(ScalarMarking):
+    """Marks the items of one sheet against one reference: walks each answer and its result together."""
 
     def __init__(self, sheet: AnswerSheet, ref: Reference) -> None:
-        self.sheet = sheet
-        self.ref = ref
-        self.errors: list[SpecError] = []
+        super().__init__(sheet, ref)
         self._rules: list[tuple[Path, Any]] | None = None
-
-    # -- reading ------------------------------------------------------------------------------
-
-    def where(self, keypath: KeyPath) -> str:
-        return str(self.sheet.location(keypath))
-
-    def error(self, keypath: KeyPath, message: str, hint: str | None = None, *, key: bool = False) -> None:
-        loc = self.sheet.source.key_location(keypath) if key else self.sheet.location(keypath)
-        self.errors.append(SpecError(loc, message, hint))
-
-    def parse_text(self, text: str, keypath: KeyPath, offset: int = 0) -> sp.Expr | None:
-        try:
-            expr = parse_expression(text, self.ref.symbols)
-        except ExprError as exc:
-            if exc.message.startswith("unknown name"):
-                raise _UnknownName(exc.message + (f" ({exc.hint})" if exc.hint else "")) from None
-            loc = self.sheet.source.expr_location(keypath, offset + exc.offset)
-            self.errors.append(SpecError(loc, exc.message, exc.hint))
-            return None
-        return expr.xreplace(self.ref.values) if self.ref.values else expr
-
-    def read(self, answer: Any, keypath: KeyPath) -> _Parsed | None:
-        """An answer scalar as sympy (None after recording an answers-file error)."""
-        if isinstance(answer, bool):
-            self.error(keypath, "expected an expression or a number, found true/false")
-            return None
-        if isinstance(answer, int | float):
-            try:
-                value = number_to_rational(answer)
-            except ExprError as exc:
-                self.error(keypath, exc.message)
-                return None
-            literal = self.sheet.raw_number(keypath, answer) or repr(answer)
-            return _Parsed(value, literal)
-        text = str(answer)
-        try:
-            quantity = parse_quantity(text)
-        except ExprError as exc:
-            self.errors.append(SpecError(self.sheet.source.expr_location(keypath, exc.offset), exc.message, exc.hint))
-            return None
-        if quantity is not None:
-            match = _NUMBER_RE.match(text)
-            assert match is not None
-            factor, _ = parse_unit(quantity.unit)
-            return _Parsed(quantity.value, match.group().strip(), factor, quantity.dimension)
-        expr = self.parse_text(text, keypath)
-        if expr is None:
-            return None
-        literal = text.strip() if _NUMBER_RE.fullmatch(text) else None
-        return _Parsed(expr, literal)
-
-    def result_expr(self, value: Any) -> sp.Expr:
-        """A result entry (a JSON number or an expression string) as sympy."""
-        if isinstance(value, int | float) and not isinstance(value, bool):
-            return number_to_rational(value)
-        text = str(value)
-        cache = _result_cache.setdefault(self.ref, {})
-        if text not in cache:
-            cache[text] = parse_expression(text, self.ref.symbols)
-        return cache[text]
-
-    # -- items --------------------------------------------------------------------------------
 
     def mark(self) -> list[ItemResult]:
         marked: list[tuple[Path, ItemResult]] = []
@@ -313,8 +112,8 @@ class _Marker:
                 continue
         return self.graded(marked)
 
-    def asked(self) -> list[tuple[Path, str]] | None:
-        """The items the instructor asks for, as (path, location): the key's ``ask``, else None."""
+    def asked(self) -> list[tuple[Path, Location]] | None:
+        """The items the instructor asks for, as (path, location in the key): the key's ``ask``, else None."""
         if self.ref.key.ask is None:
             return None
         out = []
@@ -332,7 +131,7 @@ class _Marker:
         if asked is None:
             if marked or self.sheet.items:
                 return [item for _, item in marked]
-            asked = [((k,), "") for k in self.ref.asked]
+            asked = [((k,), Location(self.sheet.path)) for k in self.ref.asked]
         out = []
         for path, _ in asked:
             name = entry_name(path)
@@ -502,7 +301,11 @@ class _Marker:
         except RecursionError:
             feedback = "could not be checked (nested too deeply)"
         return EntryResult(
-            entry_name(path), Status.TIME_LIMIT, feedback=feedback, location=self.where(keypath), given=_text(answer)
+            entry_name(path),
+            Status.TIME_LIMIT,
+            feedback=feedback,
+            location=self.where(keypath),
+            given=answer_text(answer),
         )
 
     def walk_table(self, answer: Any, keypath: KeyPath, result: dict[str, Any], path: Path) -> list[EntryResult]:
@@ -605,7 +408,7 @@ class _Marker:
                     Status.WRONG,
                     feedback=f"extra entry: {entry_name(path)} has only {n} entries",
                     location=self.where((*keypath, i)),
-                    given=_text(answer[i]),
+                    given=answer_text(answer[i]),
                 )
             )
         return out
@@ -617,213 +420,9 @@ class _Marker:
             return self.ref.coordinates.index(key)
         return None
 
-    # -- scalars --------------------------------------------------------------------------------
-
-    def wrong(self, path: Path, keypath: KeyPath, answer: Any, result: Any, feedback: str) -> EntryResult:
-        return EntryResult(
-            entry_name(path),
-            Status.WRONG,
-            feedback=feedback,
-            location=self.where(keypath),
-            given=_text(answer),
-            expected=_text(result),
-        )
-
-    def right(self, path: Path, keypath: KeyPath, answer: Any, result: Any, how: str, remark: str = "") -> EntryResult:
-        return EntryResult(
-            entry_name(path),
-            Status.CORRECT,
-            how=how,
-            feedback=remark,
-            location=self.where(keypath),
-            given=_text(answer),
-            expected=_text(result),
-        )
-
-    def scalar(self, answer: Any, keypath: KeyPath, result: Any, path: Path) -> EntryResult:
-        field_name = field_of(path)
-        if field_name in TEXT_FIELDS:
-            if str(answer).strip() == str(result):
-                return self.right(path, keypath, answer, result, "exact: the same text")
-            return self.wrong(path, keypath, answer, result, f"expected '{result}'")
-        if isinstance(result, bool):
-            if answer is result:
-                return self.right(path, keypath, answer, result, "exact: the same truth value")
-            return self.wrong(path, keypath, answer, result, f"expected {str(result).lower()}")
-        if field_name == "equations_of_motion":
-            return self.equation(answer, keypath, result, path)
-        try:
-            parsed = self.read(answer, keypath)
-        except _UnknownName as exc:
-            return self.wrong(path, keypath, answer, result, str(exc))
-        if parsed is None:
-            return self.wrong(path, keypath, answer, result, "cannot read the answer")
-        correct = self.result_expr(result)
-        expected_dim = DIMENSION_OF.get(field_name or "")
-        if parsed.dimension is not None and expected_dim is not None and parsed.dimension != expected_dim:
-            return self.wrong(
-                path, keypath, answer, result, f"wrong units: yours are {parsed.dimension}, expected {expected_dim}"
-            )
-        given = parsed.expr
-        tol, _ = self.rule(path)
-        if not given.free_symbols and not correct.free_symbols:
-            return self.number(parsed, answer, keypath, result, path, tol.over(self.ref.key.tolerance))
-        if tol.is_set and not tol.rounded:  # the instructor's tolerance for this expression
-            decision = decide(given, correct, rel_tol=tol.rel, abs_tol=tol.abs)
-        else:
-            decision = decide(given, correct)
-        return self.verdict(decision, given, correct, answer, keypath, result, path)
-
-    def verdict(
-        self,
-        decision: Decision,
-        given: sp.Expr,
-        correct: sp.Expr,
-        answer: Any,
-        keypath: KeyPath,
-        result: Any,
-        path: Path,
-    ) -> EntryResult:
-        """The entry's verdict from the decision procedure's: right, cannot be evaluated, or wrong with
-        what differs."""
-        if decision.equal:
-            return self.right(path, keypath, answer, result, decision.how)
-        if decision.equal is None:
-            return self.unevaluable(path, keypath, answer, result, decision.reason)
-        return self.wrong(path, keypath, answer, result, diagnose(given, correct, self.ref.state))
-
-    def unevaluable(self, path: Path, keypath: KeyPath, answer: Any, result: Any, reason: str) -> EntryResult:
-        return EntryResult(
-            entry_name(path),
-            Status.CANNOT_EVALUATE,
-            feedback="cannot be evaluated" + (f": {reason}" if reason else ""),
-            location=self.where(keypath),
-            given=_text(answer),
-            expected=_text(result),
-        )
-
-    def number(
-        self, parsed: _Parsed, answer: Any, keypath: KeyPath, result: Any, path: Path, tol: Tolerance
-    ) -> EntryResult:
-        given_value = value_of_number(parsed.expr)
-        if given_value is None:  # sqrt(-1), acos(2), (-8)**(1/3), 1/0
-            return self.unevaluable(path, keypath, answer, result, "it has no finite real value")
-        given, correct = float(given_value), float(sp.N(self.result_expr(result), 20))
-        if tol.rounded and parsed.literal is not None:
-            shown = significant(parsed.literal)
-            if shown is None:  # a zero: right only if the result is (to abs_tol)
-                if abs(correct) <= tol.abs:
-                    return self.right(path, keypath, answer, result, f"within abs_tol {tol.abs:g}")
-                return self.wrong(path, keypath, answer, result, "the correct value is not 0")
-            value, figures = shown
-            in_unit = Decimal(repr(float(sp.N(self.result_expr(result) / parsed.unit_factor, 20))))
-            if in_unit == 0:
-                return self.wrong(path, keypath, answer, result, f"the correct value is 0 (yours is {given:.4g})")
-            target = round_half_up(in_unit, figures)
-            if value == target:
-                return self.right(path, keypath, answer, result, f"correctly rounded to {figures} significant figures")
-            if abs(value - in_unit) <= Decimal(1).scaleb(in_unit.adjusted() - figures + 1):
-                shown_target = format(target, f".{figures - 1}e") if "e" in parsed.literal.lower() else str(target)
-                return self.wrong(
-                    path,
-                    keypath,
-                    answer,
-                    result,
-                    f"not correctly rounded: to {figures} significant figures it is {shown_target}",
-                )
-            return self.wrong(path, keypath, answer, result, number_feedback(given, correct, tol))
-        with mpmath.workdps(30):
-            close = abs(given_value - mpmath.mpf(correct)) <= max(tol.abs, tol.rel * abs(correct))
-        if close:
-            limit = f"rel_tol {tol.rel:g}" if tol.rel * abs(correct) >= tol.abs else f"abs_tol {tol.abs:g}"
-            return self.right(path, keypath, answer, result, f"within {limit}")
-        return self.wrong(path, keypath, answer, result, number_feedback(given, correct, tol))
-
-    # -- equations of motion ------------------------------------------------------------------------
-
-    def equation(self, answer: Any, keypath: KeyPath, result: Any, path: Path) -> EntryResult:
-        """An equation of motion: ``lhs = rhs`` or an expression equal to 0, up to moving terms across the
-        ``=`` and a constant factor in [MIN_SCALE, MAX_SCALE] (unless the key turns scaling off)."""
-        try:
-            given = self.read_equation(answer, keypath)
-        except _UnknownName as exc:
-            return self.wrong(path, keypath, answer, result, str(exc))
-        if given is None:
-            return self.wrong(path, keypath, answer, result, "cannot read the answer")
-        correct = self.result_expr(result)
-        decision = decide(given, correct)
-        if decision.equal:
-            return self.right(path, keypath, answer, result, decision.how)
-        if decision.equal is None:
-            return self.unevaluable(path, keypath, answer, result, decision.reason)
-        k = constant_factor(given, correct, self.ref.state, self.ref.forces)
-        if k is not None:
-            name = entry_name(path)
-            if k == -1:
-                remark = f"{name}: the terms are on the other side of '='"
-                return self.right(
-                    path, keypath, answer, result, "exact: equal with every term moved across '='", remark
-                )
-            _, scaling = self.rule(path)
-            if not scaling:
-                feedback = f"scaled by {expr_text(k)}: this equation is marked without scaling; write it as derived"
-                return self.wrong(path, keypath, answer, result, feedback)
-            if not is_acceptable_scale(k):
-                feedback = f"scaled by {expr_text(k)}: a factor outside [{MIN_SCALE:g}, {MAX_SCALE:g}] is not accepted"
-                return self.wrong(path, keypath, answer, result, feedback)
-            remark = f"{name}: scaled by the constant factor {expr_text(k)}"
-            how = f"scaled by {expr_text(k)}: equal up to this constant factor"
-            return self.right(path, keypath, answer, result, how, remark)
-        return self.wrong(path, keypath, answer, result, diagnose(self.scaled(given, correct), correct, self.ref.state))
-
-    def scaled(self, given: sp.Expr, correct: sp.Expr) -> sp.Expr:
-        """``given`` divided by the constant factor under which most of its terms agree with ``correct``
-        (so that one wrong term in a scaled equation is reported as one wrong term)."""
-        if too_large(given, correct):
-            return given
-        state = self.ref.state
-        g, c = groups(reduced(given), state), groups(reduced(correct), state)
-        best, agreeing = sp.S.One, -1
-        for key in c:
-            if key not in g:
-                continue
-            k = sp.cancel(g[key] / c[key])
-            if k == 0 or k.free_symbols & (state | self.ref.forces) or k.is_zero is not False:
-                continue
-            count = sum(1 for kk in c if kk in g and sp.expand(g[kk] - k * c[kk]) == 0)
-            if count > agreeing or (count == agreeing and k == 1):
-                best, agreeing = k, count
-        return given if best == 1 else sp.expand(given / best)
-
-    def read_equation(self, answer: Any, keypath: KeyPath) -> sp.Expr | None:
-        if isinstance(answer, str) and "=" in answer:
-            text = answer.replace("==", "=")
-            if text.count("=") != 1:
-                self.errors.append(
-                    SpecError(
-                        self.sheet.source.expr_location(keypath, answer.rfind("=")),
-                        "an equation has one '=': write 'lhs = rhs'",
-                    )
-                )
-                return None
-            lhs_text, rhs_text = text.split("=")
-            offset = answer.index("=") + (2 if "==" in answer else 1)
-            lhs = self.parse_text(lhs_text, keypath)
-            rhs = self.parse_text(rhs_text, keypath, offset)
-            if lhs is None or rhs is None:
-                return None
-            return lhs - rhs
-        parsed = self.read(answer, keypath)
-        return None if parsed is None else parsed.expr
-
 
 class _Stop(Exception):
     """An item whose shape is wrong for its result: the error is recorded, the item is skipped."""
-
-
-def _text(value: Any) -> str | None:
-    """An answer or a result as text for the reports (None for no answer)."""
-    return None if value is None else str(value)
 
 
 def _overlaps(a: Path, b: Path) -> bool:
@@ -847,6 +446,35 @@ def equal_how(difference: sp.Expr) -> str | None:
     negative = sp.Add(*(t for t in terms if t.could_extract_minus_sign() is not False))
     decision = decide(positive, -negative)
     return decision.how if decision.equal else None
+
+
+def key_problems(ref: Reference) -> list[SpecError]:
+    """The marking key's entries that name no result of this spec, located in the key file."""
+    marker = _Marker(None, ref)  # type: ignore[arg-type] - resolving keys needs no answers file
+    out = []
+    named = [(k, segs, loc) for k, segs, loc in ref.key.ask or ()]
+    named += [(r.key, r.segments, r.location) for r in ref.key.rules]
+    for key, segments, loc in named:
+        found = marker.resolve_segments(segments)
+        if isinstance(found, str):
+            out.append(SpecError(loc, f"the marking key's '{key}' names no result of this spec: {found}"))
+    return out
+
+
+def unmarked_items(ref: Reference, path: str, feedback: str) -> tuple[ItemResult, ...]:
+    """The asked items of a file that could not be marked to the end, each with ``feedback`` (a time or
+    memory limit): the key's ``ask``, else the results the spec's ``ask`` names."""
+    if ref.key.ask is not None:
+        names = [key for key, _, _ in ref.key.ask]
+    else:
+        names = list(ref.asked)
+    where = f"{path}:1:1"
+    return tuple(
+        ItemResult(
+            n, Status.TIME_LIMIT, (EntryResult(n, Status.TIME_LIMIT, feedback=feedback, location=where),), (), where
+        )
+        for n in names
+    )
 
 
 def check_sheet(sheet: AnswerSheet, ref: Reference) -> list[ItemResult]:

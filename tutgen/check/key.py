@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from tutgen.check.answers import RESULT_KEYS, TOLERANCE_KEYS, Segment, Tolerance, parse_key, tolerance_fields
-from tutgen.errors import SpecError, SpecErrors
+from tutgen.errors import Location, SpecError, SpecErrors
 from tutgen.spec.expr import did_you_mean
 from tutgen.spec.loader import load_yaml_file
 
@@ -39,7 +39,7 @@ class KeyRule:
     segments: tuple[Segment, ...]
     tolerance: Tolerance = field(default_factory=Tolerance)
     scaling: bool | None = None
-    location: str = ""
+    location: Location = field(default_factory=lambda: Location("<key>"))
 
 
 @dataclass(frozen=True)
@@ -47,12 +47,12 @@ class MarkingKey:
     """A marking key (the default: nothing asked beyond what is answered, default tolerances)."""
 
     path: str | None = None
-    ask: tuple[tuple[str, tuple[Segment, ...], str], ...] | None = None  # (key, segments, location)
+    ask: tuple[tuple[str, tuple[Segment, ...], Location], ...] | None = None  # (key, segments, location)
     tolerance: Tolerance = field(default_factory=Tolerance)
     rules: tuple[KeyRule, ...] = field(default_factory=tuple)
 
 
-def _segments(key: Any, where: str, loc: Any, errors: list[SpecError]) -> tuple[Segment, ...] | None:
+def _segments(key: Any, where: str, loc: Location, errors: list[SpecError]) -> tuple[Segment, ...] | None:
     try:
         segments = parse_key(str(key))
     except ValueError as exc:
@@ -98,7 +98,7 @@ def read_key(path: str | Path) -> MarkingKey:
                 loc = smap.location(("ask", i))
                 segs = _segments(key, "asked item", loc, errors)
                 if segs is not None:
-                    asked.append((str(key), segs, str(loc)))
+                    asked.append((str(key), segs, loc))
             ask = tuple(asked)
         elif name == "tolerance":
             if not isinstance(value, dict):
@@ -125,7 +125,7 @@ def read_key(path: str | Path) -> MarkingKey:
                     errors.append(SpecError(smap.location(("items", key, "scaling")), "'scaling' is true or false"))
                     scaling = None
                 if segs is not None:
-                    rules.append(KeyRule(str(key), segs, tol, scaling, str(loc)))
+                    rules.append(KeyRule(str(key), segs, tol, scaling, loc))
     if errors:
         raise SpecErrors(errors)
     return MarkingKey(str(path), ask, tolerance, tuple(rules))
