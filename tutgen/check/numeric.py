@@ -62,9 +62,9 @@ CHECK_DPS = 60
 NEEDED_DIGITS = 20
 #: Relative agreement (in digits) that makes two values at a state equal.
 EQUAL_DIGITS = 15
-#: A value of magnitude beyond 2**MAX_MAGNITUDE_BITS counts as not finite (``exp(exp(100))``): mpmath
+#: A value of magnitude beyond 2**MAX_MAGNITUDE_BITS counts as not finite (``exp(exp(1000))``): mpmath
 #: would represent it, but its exponent is a big integer that would make the next operation crawl.
-MAX_MAGNITUDE_BITS = 4096
+MAX_MAGNITUDE_BITS = 10**6
 
 
 def random_states(symbols: Iterable[sp.Symbol]) -> Iterator[dict[sp.Symbol, sp.Expr]]:

@@ -149,12 +149,17 @@ def _timestamp(path: str) -> str:
     return datetime.fromtimestamp(seconds, UTC).strftime("%Y-%m-%dT%H:%M:%S")
 
 
+def _xml(text: str) -> str:
+    """Text for JUnit: no escape sequences or control characters (a CI page shows it, as a terminal
+    would), and only what XML 1.0 allows; ElementTree escapes the markup."""
+    return xml_text(terminal_text(text))
+
+
 def _element(parent: ET.Element, tag: str, attrs: dict[str, str] | None = None, text: str | None = None) -> ET.Element:
-    """A sub-element whose attributes and text hold only characters XML 1.0 allows (markup is
-    escaped by ElementTree)."""
-    node = ET.SubElement(parent, tag, {k: xml_text(v) for k, v in (attrs or {}).items()})
+    """A sub-element whose attributes and text are made safe with :func:`_xml`."""
+    node = ET.SubElement(parent, tag, {k: _xml(v) for k, v in (attrs or {}).items()})
     if text is not None:
-        node.text = xml_text(text)
+        node.text = _xml(text)
     return node
 
 
@@ -162,7 +167,7 @@ def render_junit(run: CheckRun) -> str:
     """JUnit XML (the common "Jenkins"/Ant dialect, valid against its schema): one ``testsuite`` per
     answers file, one ``testcase`` per item (every asked item, answered or not); a wrong, missing,
     unevaluable or timed-out item is a ``failure``, an invalid file or a bug an ``error``."""
-    root = ET.Element("testsuites", name=xml_text(f"tutgen check {run.spec}"))
+    root = ET.Element("testsuites", name=_xml(f"tutgen check {run.spec}"))
     total = failures = errors = 0
     for f in run.files:
         stem = f.path.rsplit("/", 1)[-1].removesuffix(".yaml").removesuffix(".yml")
