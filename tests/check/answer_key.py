@@ -116,15 +116,20 @@ def answers_file(pid: int, *, printed: bool) -> dict[str, Any]:
     return out
 
 
-def numbers_file(pid: int) -> dict[str, Any]:
-    """Problem 1 or 2 of the answer key (the correct values, with its tolerances) as an answers file."""
+def numbers_file(pid: int) -> tuple[dict[str, Any], dict[str, Any]]:
+    """Problem 1 or 2 of the answer key as an answers file (the correct values) and a marking key
+    (its tolerances: the instructor's, never the answers file's)."""
     out: dict[str, Any] = {}
+    rules: dict[str, Any] = {}
     for key, spec in problems()[pid]["answers"].items():
         if key == "T":
             out["kinetic_energy"] = spec
             continue
         target = NUMBER_OF[pid][key]
-        if target is None:
-            continue
-        out[target] = {k: spec[k] for k in ("value", "rel_tol", "abs_tol") if k in spec}
-    return out
+        if target is None or any(k.startswith(target + "[") or target.startswith(k + "[") for k in out):
+            continue  # an entry may be answered once: the whole tensor or its entries, not both
+        out[target] = spec["value"]
+        rule = {k: spec[k] for k in ("rel_tol", "abs_tol") if k in spec}
+        if rule:
+            rules[target] = rule
+    return out, {"items": rules} if rules else {}

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import tempfile
 import textwrap
 from functools import cache
@@ -12,6 +13,7 @@ import yaml
 
 from tests.conftest import SPECS, solved
 from tutgen.check.compare import Reference, Status, reference_from
+from tutgen.check.key import read_key
 from tutgen.check.run import FileResult, mark_file
 
 TUTORIAL = SPECS / "tutorial-1"
@@ -28,8 +30,22 @@ def tutorial(pid: int) -> Reference:
     return reference(next(TUTORIAL.glob(f"p{pid:02d}-*.yaml")))
 
 
-def mark_text(ref: Reference, text: str, name: str = "answers.yaml") -> FileResult:
-    """Mark answers given as YAML text (dedented), written to a temporary file called ``name``."""
+def with_key(ref: Reference, key: str | Path | None) -> Reference:
+    """``ref`` with a marking key, given as YAML text (dedented) or as a file."""
+    if key is None:
+        return ref
+    if isinstance(key, Path):
+        return dataclasses.replace(ref, key=read_key(key))
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "key.yaml"
+        path.write_text(textwrap.dedent(key), encoding="utf-8")
+        return dataclasses.replace(ref, key=read_key(path))
+
+
+def mark_text(ref: Reference, text: str, name: str = "answers.yaml", *, key: str | None = None) -> FileResult:
+    """Mark answers given as YAML text (dedented), written to a temporary file called ``name``, with
+    the marking ``key`` (YAML text) if one is given."""
+    ref = with_key(ref, key)
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / name
         path.write_text(textwrap.dedent(text), encoding="utf-8")
@@ -37,8 +53,9 @@ def mark_text(ref: Reference, text: str, name: str = "answers.yaml") -> FileResu
     return result
 
 
-def mark_data(ref: Reference, data: dict[str, Any]) -> FileResult:
-    return mark_text(ref, yaml.safe_dump(data, sort_keys=False, allow_unicode=True))
+def mark_data(ref: Reference, data: dict[str, Any], key: dict[str, Any] | None = None) -> FileResult:
+    key_text = None if key is None else yaml.safe_dump(key, sort_keys=False)
+    return mark_text(ref, yaml.safe_dump(data, sort_keys=False, allow_unicode=True), key=key_text)
 
 
 def verdicts(result: FileResult) -> dict[str, tuple[Status, str]]:

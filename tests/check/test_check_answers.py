@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from tests.check.helpers import errors, mark_text, tutorial
-from tutgen.check.answers import RESULT_KEYS, Tolerance, parse_key, read_answers
+from tutgen.check.answers import MSG_NO_TOLERANCE, RESULT_KEYS, Tolerance, parse_key, read_answers
 from tutgen.errors import SpecErrors
 
 
@@ -60,17 +60,16 @@ def test_answers_read_reserved_keys_and_items(tmp_path: Path) -> None:
             """\
             spec: specs/tutorial-1/p04-rp-arm.yaml
             student: Ada
-            tolerance: {rel_tol: 0.01, rounded: true}
             kinetic_energy: "m*r**2*theta_dot**2/2 + m*r_dot**2/2"
             mass_matrix[2,2]: m
             """,
         )
     )
     assert (sheet.student, sheet.spec) == ("Ada", "specs/tutorial-1/p04-rp-arm.yaml")
-    assert sheet.tolerance == Tolerance(rel_tol=0.01, rounded=True)
+    assert sheet.tolerance == Tolerance()
     assert [(i.key, i.location.line, i.location.col) for i in sheet.items] == [
-        ("kinetic_energy", 4, 1),
-        ("mass_matrix[2,2]", 5, 1),
+        ("kinetic_energy", 3, 1),
+        ("mass_matrix[2,2]", 4, 1),
     ]
     assert sheet.errors == ()
 
@@ -109,6 +108,9 @@ def test_answers_result_keys_are_the_json_contract() -> None:
     assert set(ref.results) <= set(RESULT_KEYS)
 
 
+NO_TOLERANCE = MSG_NO_TOLERANCE
+
+
 @pytest.mark.parametrize(
     ("text", "expected"),
     [
@@ -122,18 +124,35 @@ def test_answers_result_keys_are_the_json_contract() -> None:
             id="textbook-letter",
         ),
         pytest.param(
-            "tolerance: {rel_tol: -1, rond: true}\n",
-            [
-                "answers.yaml:1:22: error: 'rel_tol' must not be negative, found -1",
-                "answers.yaml:1:26: error: unknown key 'rond' in a tolerance; expected one of: rel_tol, abs_tol, "
-                "rounded\n  hint: did you mean 'rounded'?",
-            ],
-            id="bad-tolerance",
+            "tolerance: {rel_tol: 1e300}\n",
+            ["answers.yaml:1:1: error: " + NO_TOLERANCE.format(key="tolerance")],
+            id="file-tolerance-refused",
         ),
         pytest.param(
-            "mass_matrix: {value: [[m, 0], [0, m]], rel_tol: x}\n",
-            ["answers.yaml:1:49: error: 'rel_tol' must be a number (e.g. 0.01), found 'x'"],
-            id="bad-item-tolerance",
+            "mass_matrix: {value: [[m, 0], [0, m]], rel_tol: 1e300}\n",
+            ["answers.yaml:1:40: error: " + NO_TOLERANCE.format(key="rel_tol")],
+            id="item-tolerance-refused",
+        ),
+        pytest.param(
+            "mass_matrix: {value: [[m, 0], [0, m]], rounded: true}\nrel_tol: 1\n",
+            [
+                "answers.yaml:1:40: error: " + NO_TOLERANCE.format(key="rounded"),
+                "answers.yaml:2:1: error: " + NO_TOLERANCE.format(key="rel_tol"),
+            ],
+            id="rounded-and-tolerance-key-refused",
+        ),
+        pytest.param(
+            "mass_matrix: [[m, 0], [0, m]]\nmass_matrix[1,1]: m\n",
+            [
+                "answers.yaml:2:1: error: 'mass_matrix[1,1]' answers mass_matrix[1,1] again "
+                "(already answered by 'mass_matrix'); each entry may be answered once"
+            ],
+            id="answered-twice-overlapping",
+        ),
+        pytest.param(
+            "christoffel: {'1,1,2': 0, h112: 1}\n",
+            ["answers.yaml:1:27: error: 'h112' answers christoffel[1,1,2] again (already answered as '1,1,2')"],
+            id="answered-twice-in-a-table",
         ),
         pytest.param(
             "student: [a, b]\n",
@@ -175,7 +194,7 @@ def test_answers_result_keys_are_the_json_contract() -> None:
             "lagrange_terms.theta.dL_dq: 1\nlagrange_terms[1].dL_dq: 2\n",
             [
                 "answers.yaml:2:1: error: 'lagrange_terms[1].dL_dq' answers lagrange_terms[1].dL_dq again "
-                "(already answered by 'lagrange_terms.theta.dL_dq')"
+                "(already answered by 'lagrange_terms.theta.dL_dq'); each entry may be answered once"
             ],
             id="answered-twice",
         ),

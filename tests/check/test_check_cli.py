@@ -127,9 +127,13 @@ def test_check_cli_json_report(tmp_path: Path) -> None:
     result = run("check", P04, wrong, "--format", "json")
     assert result.exit_code == EXIT_CHECK_FAILED
     doc = json.loads(result.stdout)
-    assert doc["summary"] == {"files": 1, "pass": 0, "fail": 1, "invalid": 0}
+    assert doc["summary"] == {"files": 1, "pass": 0, "fail": 1, "time_limit": 0, "invalid": 0, "error": 0}
     (f,) = doc["files"]
-    assert (f["student"], f["status"], f["counts"]) == ("Bob", "fail", {"correct": 1, "wrong": 2, "missing": 0})
+    assert (f["student"], f["status"], f["counts"]) == (
+        "Bob",
+        "fail",
+        {"correct": 1, "wrong": 2, "missing": 0, "cannot_evaluate": 0, "time_limit": 0},
+    )
     matrix = next(i for i in f["items"] if i["name"] == "mass_matrix")
     entry = next(e for e in matrix["entries"] if e["name"] == "mass_matrix[2,2]")
     assert entry == {

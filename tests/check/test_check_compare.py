@@ -7,6 +7,7 @@ from typing import Any
 
 import pytest
 import sympy as sp
+import yaml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from sympy.simplify.fu import TR8
@@ -251,7 +252,7 @@ def test_compare_unknown_name_is_a_wrong_answer() -> None:
 
 def test_compare_expression_with_a_tolerance_is_compared_at_random_states() -> None:
     ref = tutorial(2)
-    result = mark_text(ref, 'kinetic_energy: {value: "2.92*theta_dot**2", rel_tol: 0.005}\n')
+    result = mark_text(ref, 'kinetic_energy: "2.92*theta_dot**2"\n', key="items: {kinetic_energy: {rel_tol: 0.005}}\n")
     (entry,) = result.items[0].entries
     assert entry.status is Status.CORRECT
     assert entry.how.startswith("numeric: within rel_tol 0.005")
@@ -304,16 +305,24 @@ def test_compare_expression_with_a_tolerance_is_compared_at_random_states() -> N
     ],
 )
 def test_compare_numbers(answer: str, status: Status, feedback: str) -> None:
-    result = mark_text(tutorial(1), f"inertia_tensor[1,1]: {answer}\n")
+    """A tolerance written next to the value here is the instructor's: it goes into the marking key."""
+    key = None
+    if answer.startswith("{"):
+        data = yaml.safe_load(answer)
+        del data["value"]
+        data = {k: v if k == "rounded" else float(v) for k, v in data.items()}  # YAML 1.1 reads 1e-4 as text
+        answer = answer.split(",")[0].removeprefix("{value:").strip()  # the number as written
+        key = "items: " + json.dumps({"inertia_tensor[1,1]": data}) + "\n"
+    result = mark_text(tutorial(1), f"inertia_tensor[1,1]: {answer}\n", key=key)
     assert verdicts(result) == {"inertia_tensor[1,1]": (status, feedback)}
 
 
 def test_compare_numbers_file_tolerance_and_parameter_values() -> None:
-    """The file's tolerance applies to its numbers; a parameter with a value (rho) may be used."""
+    """The key's tolerance applies to the numbers; a parameter with a value (rho) may be used."""
     result = mark_text(
         tutorial(1),
-        """\
-        tolerance: {rel_tol: 1e-3}
+        key="tolerance: {rel_tol: 1e-3}\n",
+        text="""\
         bodies.body.parts.block.mass: rho*0.05*0.15*0.05
         bodies.body.parts.cylinder.mass: 1.233 kg
         bodies.body.parts.cylinder.volume: pi*0.025^2*0.08
@@ -334,7 +343,11 @@ def test_compare_principal_axes_either_way() -> None:
     ref = tutorial(1)
     axes = ref.results["bodies"]["body"]["principal_axes"]
     flipped = [[-v for v in axes[0]], axes[1], axes[2]]
-    result = mark_text(ref, "bodies.body.principal_axes: " + json.dumps({"value": flipped, "rel_tol": 1e-6}) + "\n")
+    result = mark_text(
+        ref,
+        "bodies.body.principal_axes: " + json.dumps(flipped) + "\n",
+        key="items: {bodies.body.principal_axes: {rel_tol: 1.0e-6}}\n",
+    )
     assert not_correct(result) == set()
     assert result.items[0].remarks == (
         "bodies.body.principal_axes[1] points the other way; accepted, an axis has no direction",

@@ -9,8 +9,8 @@ import pytest
 import yaml
 
 from tests.check.answer_key import ANSWERS, NUMBER_OF, SPEC_OF, answers_file, numbers_file, problems, typo_entries
-from tests.check.helpers import mark_data, not_correct, tutorial, verdicts
-from tutgen.check.compare import Status
+from tests.check.helpers import mark_data, not_correct, tutorial, verdicts, with_key
+from tutgen.check.compare import Reference, Status
 from tutgen.check.run import mark_file
 
 PRINTED = Path(__file__).parent / "answers"
@@ -23,9 +23,15 @@ def printed(pid: int) -> Path:
     return PRINTED / f"p{pid:02d}-printed.yaml"
 
 
+def printed_reference(pid: int) -> Reference:
+    """The reference of problem ``pid`` with the instructor's key for its printed numbers, if any."""
+    key = PRINTED / f"p{pid:02d}-key.yaml"
+    return with_key(tutorial(pid), key if key.exists() else None)
+
+
 @pytest.mark.parametrize("pid", PROBLEMS, ids=[f"p{p:02d}" for p in PROBLEMS])
 def test_check_printed_answers_are_flagged_exactly_at_the_typos(pid: int) -> None:
-    result = mark_file(tutorial(pid), printed(pid))
+    result = mark_file(printed_reference(pid), printed(pid))
     assert not result.errors
     assert not_correct(result) == typo_entries(pid)
     assert result.status == ("fail" if typo_entries(pid) else "pass")
@@ -33,8 +39,8 @@ def test_check_printed_answers_are_flagged_exactly_at_the_typos(pid: int) -> Non
 
 @pytest.mark.parametrize("pid", PROBLEMS, ids=[f"p{p:02d}" for p in PROBLEMS])
 def test_check_answer_key_is_all_correct(pid: int) -> None:
-    data = numbers_file(pid) if pid <= 2 else answers_file(pid, printed=False)
-    result = mark_data(tutorial(pid), data)
+    data, key = numbers_file(pid) if pid <= 2 else (answers_file(pid, printed=False), None)
+    result = mark_data(tutorial(pid), data, key)
     assert not_correct(result) == set()
     assert len(verdicts(result)) >= len(data)
 
@@ -70,7 +76,7 @@ def test_check_printed_numbers_are_the_answer_key_printed_ones(pid: int) -> None
 
 
 def feedback(pid: int, entry: str) -> str:
-    status, text = verdicts(mark_file(tutorial(pid), printed(pid)))[entry]
+    status, text = verdicts(mark_file(printed_reference(pid), printed(pid)))[entry]
     assert status is Status.WRONG
     return text
 

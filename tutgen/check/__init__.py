@@ -1,15 +1,18 @@
 """Answer checking: mark answers files against the results tutgen derives for a spec.
 
 ``tutgen check SPEC ANSWERS...`` derives the spec once (:func:`load_reference`), reads each answers
-file (:mod:`tutgen.check.answers`), compares it entry by entry (:mod:`tutgen.check.compare`) and
-reports (:mod:`tutgen.check.report`). The answers format and the comparison rules are documented in
-docs/check.md.
+file (:mod:`tutgen.check.answers`) in a bounded child process (:mod:`tutgen.check.run`,
+:mod:`tutgen.check.limits`), compares it entry by entry (:mod:`tutgen.check.compare`, by the decision
+procedure of :mod:`tutgen.check.equivalence`) with the instructor's marking key
+(:mod:`tutgen.check.key`) and reports (:mod:`tutgen.check.report`). The answers format, the decision
+procedure, the verdicts and the limits are documented in docs/check.md.
 """
 
 from __future__ import annotations
 
 from tutgen.check.answers import AnswerSheet, Tolerance, read_answers
 from tutgen.check.compare import EntryResult, ItemResult, Reference, Status, check_sheet
+from tutgen.check.key import MarkingKey, read_key
 from tutgen.check.run import CheckRun, FileResult, check, load_reference, mark_file, mark_files
 
 __all__ = [
@@ -18,6 +21,7 @@ __all__ = [
     "EntryResult",
     "FileResult",
     "ItemResult",
+    "MarkingKey",
     "Reference",
     "Status",
     "Tolerance",
@@ -27,4 +31,5 @@ __all__ = [
     "mark_file",
     "mark_files",
     "read_answers",
+    "read_key",
 ]

@@ -2,8 +2,9 @@
 
 An answers file is a mapping from result keys of ``tutgen solve --format json`` (its ``results``)
 to answers in the same form: expressions as strings in the spec grammar, numbers, lists, tables.
-Three keys are not results: ``spec`` (the spec the answers are for; informational), ``student``
-(a name for the reports) and ``tolerance`` (defaults for the numeric answers of the file). The
+Two keys are not results: ``spec`` (the spec the answers are for; informational) and ``student``
+(a name for the reports). ``tolerance`` (and ``rel_tol``, ``abs_tol``, ``rounded``) are refused:
+tolerances are the instructor's (:mod:`tutgen.check.key`). The
 format is documented in docs/check.md.
 
 A key is a path into the results (:func:`parse_key`): ``mass_matrix``, ``mass_matrix[1,2]``,
@@ -30,6 +31,7 @@ from tutgen.spec.loader import KeyPath, SourceMap, load_yaml_file
 __all__ = [
     "DEFAULT_ABS_TOL",
     "DEFAULT_REL_TOL",
+    "MSG_NO_TOLERANCE",
     "RESERVED_KEYS",
     "RESULT_KEYS",
     "TOLERANCE_KEYS",
@@ -38,9 +40,9 @@ __all__ = [
     "Segment",
     "Tolerance",
     "is_tolerance_form",
-    "item_tolerance",
     "parse_key",
     "read_answers",
+    "tolerance_fields",
     "unknown_key_error",
 ]
 
@@ -218,11 +220,13 @@ def parse_key(key: str) -> tuple[Segment, ...]:
     return tuple(segments)
 
 
-def _tolerance(
+def tolerance_fields(
     data: dict[str, Any], keypath: KeyPath, smap: SourceMap, errors: list[SpecError], *, allowed: tuple[str, ...]
-) -> Tolerance:
-    """The tolerance fields of ``data`` (other keys in ``allowed`` are skipped); problems go to ``errors``."""
+) -> tuple[Tolerance, dict[str, Any]]:
+    """The tolerance fields of ``data`` (of a marking key), and the other keys in ``allowed`` with their
+    values; problems go to ``errors``."""
     fields: dict[str, Any] = {}
+    extra: dict[str, Any] = {}
     for key, value in data.items():
         path = (*keypath, key)
         if key in TOLERANCE_KEYS:
@@ -239,7 +243,9 @@ def _tolerance(
                 errors.append(SpecError(smap.location(path), f"'{key}' must not be negative, found {value}"))
                 continue
             fields[key] = value if key == "rounded" else float(value)
-        elif key not in allowed:
+        elif key in allowed:
+            extra[key] = value
+        else:
             close = did_you_mean(key, (*allowed, *TOLERANCE_KEYS))
             errors.append(
                 SpecError(
@@ -248,7 +254,7 @@ def _tolerance(
                     f"did you mean '{close}'?" if close else None,
                 )
             )
-    return Tolerance(**fields)
+    return Tolerance(**fields), extra
 
 
 def _describe(value: Any) -> str:
@@ -268,9 +274,10 @@ def is_tolerance_form(value: Any) -> bool:
     return isinstance(value, dict) and "value" in value and all(k == "value" or k in TOLERANCE_KEYS for k in value)
 
 
-def item_tolerance(value: dict[str, Any], keypath: KeyPath, smap: SourceMap, errors: list[SpecError]) -> Tolerance:
-    """The tolerance of an answer in the ``{value: ..., rel_tol: ...}`` form."""
-    return _tolerance(value, keypath, smap, errors, allowed=("value",))
+#: Why an answers file may not set a tolerance.
+MSG_NO_TOLERANCE = (
+    "an answers file may not set '{key}': tolerances are the instructor's (the marking key, tutgen check --key)"
+)
 
 
 def unknown_key_error(key: str, location: Location) -> SpecError:
@@ -291,9 +298,12 @@ def read_answers(path: str | Path) -> AnswerSheet:
     data, smap = load_yaml_file(path)
     name = str(path)
     errors: list[SpecError] = []
+    if data is None:  # an empty file answers nothing: every asked item is missing
+        data = {}
     if not isinstance(data, dict):
-        found = "an empty file" if data is None else _describe(data)
-        raise SpecErrors([SpecError(smap.location(()), f"expected a mapping of result keys to answers, found {found}")])
+        raise SpecErrors(
+            [SpecError(smap.location(()), f"expected a mapping of result keys to answers, found {_describe(data)}")]
+        )
     student = spec = None
     tolerance = Tolerance()
     items: list[AnswerItem] = []
@@ -307,16 +317,8 @@ def read_answers(path: str | Path) -> AnswerSheet:
             else:
                 student = str(value)
             continue
-        if key == "tolerance":
-            if not isinstance(value, dict):
-                errors.append(
-                    SpecError(
-                        smap.location(keypath),
-                        f"'tolerance' must be a mapping such as {{rel_tol: 0.01}}, found {_describe(value)}",
-                    )
-                )
-            else:
-                tolerance = _tolerance(value, keypath, smap, errors, allowed=())
+        if key == "tolerance" or key in TOLERANCE_KEYS:
+            errors.append(SpecError(smap.key_location(keypath), MSG_NO_TOLERANCE.format(key=key)))
             continue
         try:
             segments = parse_key(key)

@@ -1,7 +1,13 @@
 """Reports of a check run: a table for the terminal, JSON, JUnit XML, and a per-file summary.
 
-Every function here returns text; the CLI decides where it goes. Output is deterministic (no
-timestamps, no durations, files in the order given), so reports can be compared between runs.
+Every function here returns text; the CLI decides where it goes. Output is deterministic (files in
+the order given, no durations; JUnit's required ``timestamp`` is the answers file's modification time
+and its ``time`` is 0), so reports can be compared between runs.
+
+Everything a student wrote (a name, an answer, a file name) is data: it is stripped of control
+characters and escape sequences for the terminal (:func:`tutgen.safetext.terminal_text`), of what
+XML 1.0 forbids for JUnit (:func:`tutgen.safetext.xml_text`; the writer escapes markup), and
+neutralised for a spreadsheet in the CSV summary (:func:`tutgen.safetext.csv_cell`).
 """
 
 from __future__ import annotations
@@ -9,9 +15,11 @@ from __future__ import annotations
 import csv
 import io
 import json
+import os
 import shutil
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
@@ -19,6 +27,7 @@ from tutgen import __version__
 from tutgen.check.compare import EntryResult, ItemResult, Status
 from tutgen.check.run import CheckRun, FileResult
 from tutgen.errors import UsageError
+from tutgen.safetext import csv_cell, terminal_text, xml_text
 
 __all__ = [
     "SUMMARY_FIELDS",
@@ -34,10 +43,26 @@ __all__ = [
 ]
 
 #: Columns of the summary (CSV), one row per answers file; also the keys of each JSON summary row.
-SUMMARY_FIELDS = ("file", "student", "status", "correct", "wrong", "missing", "items", "wrong_items", "errors")
+SUMMARY_FIELDS = (
+    "file",
+    "student",
+    "status",
+    "correct",
+    "wrong",
+    "missing",
+    "items",
+    "wrong_items",
+    "errors",
+    "cannot_evaluate",
+    "time_limit",
+)
 
-_MARKS = {Status.CORRECT: "✓", Status.WRONG: "✗", Status.MISSING: "–"}
-_STYLES = {Status.CORRECT: "green", Status.WRONG: "red", Status.MISSING: "yellow"}
+_MARKS = {Status.CORRECT: "✓", Status.WRONG: "✗", Status.MISSING: "–", Status.CANNOT_EVALUATE: "?"}
+_MARKS[Status.TIME_LIMIT] = "⌛"
+_STYLES = {Status.CORRECT: "green", Status.WRONG: "red", Status.MISSING: "yellow", Status.CANNOT_EVALUATE: "magenta"}
+_STYLES[Status.TIME_LIMIT] = "magenta"
+#: File statuses, in the order the summaries count them.
+FILE_STATUSES = ("pass", "fail", "time_limit", "invalid", "error")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -78,12 +103,7 @@ def run_to_json(run: CheckRun) -> dict[str, Any]:
         "tutgen": __version__,
         "spec": run.spec,
         "title": run.title,
-        "summary": {
-            "files": len(run.files),
-            "pass": statuses.count("pass"),
-            "fail": statuses.count("fail"),
-            "invalid": statuses.count("invalid"),
-        },
+        "summary": {"files": len(run.files), **{s: statuses.count(s) for s in FILE_STATUSES}},
         "files": [
             {
                 "answers": f.path,
@@ -91,6 +111,7 @@ def run_to_json(run: CheckRun) -> dict[str, Any]:
                 "status": f.status,
                 "counts": _counts(f),
                 "errors": list(f.errors),
+                "limit": f.limit,
                 "items": [_item_json(i) for i in f.items],
             }
             for f in run.files
@@ -118,49 +139,70 @@ def _line_of(location: str) -> str | None:
     return parts[1] if len(parts) == 3 and parts[1].isdigit() else None
 
 
+def _timestamp(path: str) -> str:
+    """JUnit's ``timestamp`` of a suite: the answers file's modification time (UTC, to the second),
+    so that the same files give the same report; the epoch when the file cannot be read."""
+    try:
+        seconds = int(os.stat(path).st_mtime)
+    except (OSError, ValueError, OverflowError):
+        seconds = 0
+    return datetime.fromtimestamp(seconds, UTC).strftime("%Y-%m-%dT%H:%M:%S")
+
+
+def _xml(text: str) -> str:
+    """Text for JUnit: no escape sequences or control characters (a CI page shows it, as a terminal
+    would), and only what XML 1.0 allows; ElementTree escapes the markup."""
+    return xml_text(terminal_text(text))
+
+
+def _element(parent: ET.Element, tag: str, attrs: dict[str, str] | None = None, text: str | None = None) -> ET.Element:
+    """A sub-element whose attributes and text are made safe with :func:`_xml`."""
+    node = ET.SubElement(parent, tag, {k: _xml(v) for k, v in (attrs or {}).items()})
+    if text is not None:
+        node.text = _xml(text)
+    return node
+
+
 def render_junit(run: CheckRun) -> str:
-    """JUnit XML (the widely read "Jenkins" dialect): one ``testsuite`` per answers file, one
-    ``testcase`` per answer; a wrong or missing answer is a ``failure``, an invalid file an ``error``."""
-    root = ET.Element("testsuites", name=f"tutgen check {run.spec}")
+    """JUnit XML (the common "Jenkins"/Ant dialect, valid against its schema): one ``testsuite`` per
+    answers file, one ``testcase`` per item (every asked item, answered or not); a wrong, missing,
+    unevaluable or timed-out item is a ``failure``, an invalid file or a bug an ``error``."""
+    root = ET.Element("testsuites", name=_xml(f"tutgen check {run.spec}"))
     total = failures = errors = 0
     for f in run.files:
         stem = f.path.rsplit("/", 1)[-1].removesuffix(".yaml").removesuffix(".yml")
-        suite = ET.SubElement(root, "testsuite", name=f.path)
-        props = ET.SubElement(suite, "properties")
-        ET.SubElement(props, "property", name="spec", value=run.spec)
+        suite = _element(root, "testsuite", {"name": f.path, "timestamp": _timestamp(f.path), "time": "0"})
+        props = _element(suite, "properties")
+        _element(props, "property", {"name": "spec", "value": run.spec})
         if f.student:
-            ET.SubElement(props, "property", name="student", value=f.student)
+            _element(props, "property", {"name": "student", "value": f.student})
         n = fails = errs = 0
         if f.errors:
-            case = ET.SubElement(suite, "testcase", classname=stem, name="answers file", file=f.path)
-            error = ET.SubElement(case, "error", type="invalid", message=f.errors[0].split("\n")[0])
-            error.text = "\n".join(f.errors)
+            case = _element(suite, "testcase", {"classname": stem, "name": "answers file", "file": f.path, "time": "0"})
+            kind = "internal" if f.internal else "invalid"
+            _element(case, "error", {"type": kind, "message": f.errors[0].split("\n")[0]}, "\n".join(f.errors))
             n, errs = 1, 1
         for item in f.items:
-            attrs = {"classname": stem, "name": item.name, "file": f.path}
+            attrs = {"classname": stem, "name": item.name, "file": f.path, "time": "0"}
             line = _line_of(item.location)
             if line:
                 attrs["line"] = line
-            case = ET.SubElement(suite, "testcase", attrs)
+            case = _element(suite, "testcase", attrs)
             n += 1
             if item.status is not Status.CORRECT:
                 fails += 1
                 first = item.problems[0]
-                failure = ET.SubElement(
-                    case, "failure", type=item.status.value, message=f"{first.name}: {first.feedback}"
-                )
-                failure.text = _details(item)
+                message = f"{first.name}: {first.feedback}"
+                _element(case, "failure", {"type": item.status.value, "message": message}, _details(item))
             elif item.remarks:
-                out = ET.SubElement(case, "system-out")
-                out.text = "\n".join(item.remarks)
-        suite.set("tests", str(n))
-        suite.set("failures", str(fails))
-        suite.set("errors", str(errs))
-        suite.set("skipped", "0")
+                _element(case, "system-out", None, "\n".join(item.remarks))
+        for name, value in (("tests", n), ("failures", fails), ("errors", errs), ("skipped", 0)):
+            suite.set(name, str(value))
         total, failures, errors = total + n, failures + fails, errors + errs
     root.set("tests", str(total))
     root.set("failures", str(failures))
     root.set("errors", str(errors))
+    root.set("time", "0")
     ET.indent(root)
     return '<?xml version="1.0" encoding="utf-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
 
@@ -185,6 +227,8 @@ def summary_rows(run: CheckRun) -> list[dict[str, Any]]:
                 "items": len(f.items),
                 "wrong_items": "; ".join(i.name for i in f.items if i.status is not Status.CORRECT),
                 "errors": len(f.errors),
+                "cannot_evaluate": counts["cannot_evaluate"],
+                "time_limit": counts["time_limit"],
             }
         )
     return rows
@@ -198,7 +242,8 @@ def render_summary(run: CheckRun, fmt: str) -> str:
     buffer = io.StringIO()
     writer = csv.DictWriter(buffer, fieldnames=SUMMARY_FIELDS, lineterminator="\n")
     writer.writeheader()
-    writer.writerows(rows)
+    # every text cell is neutralised for spreadsheets (a student called "=HYPERLINK(...)"); numbers stay numbers
+    writer.writerows({k: csv_cell(v) if isinstance(v, str) else v for k, v in row.items()} for row in rows)
     return buffer.getvalue()
 
 
@@ -228,7 +273,10 @@ def render_table(run: CheckRun, *, color: bool = False, width: int = 120) -> str
     """A readable report: one table of answers for a single file; one row per file for several."""
     from rich.console import Console
     from rich.table import Table
-    from rich.text import Text
+    from rich.text import Text as RichText
+
+    def Text(text: str, style: str = "") -> RichText:
+        return RichText(terminal_text(text), style=style)
 
     buffer = io.StringIO()
     console = Console(
@@ -249,17 +297,22 @@ def render_table(run: CheckRun, *, color: bool = False, width: int = 120) -> str
             table.add_row(mark, Text(item.name), Text(_item_details(item)))
         console.print(table)
         c = _counts(f)
-        console.print(f"{c['correct']} correct, {c['wrong']} wrong, {c['missing']} missing")
+        extra = "".join(f", {c[s]} {s.replace('_', ' ')}" for s in ("cannot_evaluate", "time_limit") if c[s])
+        console.print(f"{c['correct']} correct, {c['wrong']} wrong, {c['missing']} missing{extra}")
+        if f.limit:
+            console.print(Text(f"{f.path}: stopped before the end ({f.limit})"))
         return buffer.getvalue()
     table = Table(title=Text(f"answers to {run.spec}"), title_justify="left")
     for name in ("file", "student", "result", "correct", "wrong", "missing", "not correct"):
         table.add_column(name, overflow="fold", justify="right" if name in ("correct", "wrong", "missing") else "left")
     for f in run.files:
-        style = {"pass": "green", "fail": "red", "invalid": "magenta"}[f.status]
+        style = {"pass": "green", "fail": "red"}.get(f.status, "magenta")
         c = _counts(f)
         not_correct = "; ".join(i.name for i in f.items if i.status is not Status.CORRECT)
         if f.errors:
             not_correct = f"invalid file: {_errors(len(f.errors))} (on stderr)"
+        if f.limit:
+            not_correct = f"stopped: {f.limit}"
         table.add_row(
             Text(f.path),
             Text(f.student or ""),
@@ -271,9 +324,10 @@ def render_table(run: CheckRun, *, color: bool = False, width: int = 120) -> str
         )
     console.print(table)
     statuses = [f.status for f in run.files]
+    extra = "".join(f", {statuses.count(s)} {s.replace('_', ' ')}" for s in ("time_limit", "error") if s in statuses)
     console.print(
         f"{len(run.files)} files: {statuses.count('pass')} pass, {statuses.count('fail')} fail, "
-        f"{statuses.count('invalid')} invalid"
+        f"{statuses.count('invalid')} invalid{extra}"
     )
     return buffer.getvalue()
 
