@@ -103,6 +103,20 @@ class UsageError(TutgenError):
     """A command-line mistake that Click itself cannot see (e.g. -o would overwrite a spec)."""
 
     exit_code = EXIT_USAGE
+    #: whether the text starts with its own ``file:line: error:`` (else the CLI puts "error: " in front)
+    located = False
+
+
+class TemplateError(UsageError):
+    """An error in a user's template (``--template-dir``): its syntax, an undefined variable, something
+    the sandbox refuses, a template that includes itself forever; located at the template's line."""
+
+    located = True
+
+    def __init__(self, location: Location, message: str) -> None:
+        self.location = location
+        self.message = message
+        super().__init__(f"{location}: error: {message}")
 
 
 class DerivationTimeout(DerivationError):

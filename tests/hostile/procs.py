@@ -3,12 +3,23 @@
 from __future__ import annotations
 
 import os
+import time
 from pathlib import Path
+
+
+def _state(pid: str) -> str:
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            stat = fh.read().decode(errors="replace")
+    except OSError:
+        return "gone"
+    return stat[stat.rindex(")") + 2 :].split()[0]
 
 
 def processes_in(directory: Path) -> list[tuple[int, str]]:
     """(pid, command line) of every process whose working directory is ``directory`` or below it
-    (also once that directory is deleted: the kernel then shows the old path plus " (deleted)")."""
+    (also once that directory is deleted: the kernel then shows the old path plus " (deleted)").
+    Zombies (dead, waiting to be reaped by whoever inherited them) are not running and not counted."""
     root = str(directory.resolve())
     found = []
     for entry in os.listdir("/proc"):
@@ -20,9 +31,21 @@ def processes_in(directory: Path) -> list[tuple[int, str]]:
                 cmd = fh.read().replace(b"\0", b" ").decode(errors="replace").strip()
         except OSError:  # gone meanwhile, or not ours to look at
             continue
-        if cwd == root or cwd.startswith(root + "/"):
+        if (cwd == root or cwd.startswith(root + "/")) and _state(entry) not in ("Z", "X", "gone"):
             found.append((int(entry), cmd))
     return found
+
+
+def settle(probe: object, seconds: float = 3.0) -> list:
+    """``probe()`` until it returns an empty list or ``seconds`` pass (a killed process takes a few
+    milliseconds to die); its last answer."""
+    assert callable(probe)
+    ends = time.monotonic() + seconds
+    while True:
+        left = probe()
+        if not left or time.monotonic() > ends:
+            return left
+        time.sleep(0.05)
 
 
 def children_of(pid: int) -> list[int]:

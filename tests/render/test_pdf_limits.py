@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.hostile.procs import processes_in
+from tests.hostile.procs import processes_in, settle
 from tutgen.errors import DerivationTimeout
 from tutgen.limits import deadline
 from tutgen.render.pdf import PdfError, compile_pdf
@@ -39,7 +39,7 @@ def texdir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
 
 
 def assert_nothing_left(texdir: Path) -> None:
-    left = processes_in(texdir)
+    left = settle(lambda: processes_in(texdir))
     assert left == [], f"processes of the compile still running: {left}"
     assert list(texdir.iterdir()) == [], "the compile's temporary directory was not removed"
 
