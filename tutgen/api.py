@@ -123,6 +123,41 @@ def solve_specs(
         return texts
 
 
+#: Used where the file system cannot be asked (``pathconf``): the limits of Linux and macOS.
+NAME_MAX = 255
+PATH_MAX = 4096
+
+
+def check_output_path(path: Path, option: str = "-o") -> None:
+    """Refuse, as a usage error, an output path no file system can hold: a NUL byte, a name longer
+    than the file system allows (``NAME_MAX``, in bytes), a path longer than ``PATH_MAX``."""
+    text = str(path)
+    if "\0" in text:
+        raise UsageError(f"{option}: a path cannot contain a NUL character")
+    encoded = os.fsencode(text)
+    if len(encoded) >= PATH_MAX:
+        raise UsageError(f"{option}: the path is {len(encoded)} bytes long; at most {PATH_MAX - 1} are allowed")
+    limit = _name_max(path)
+    for part in path.parts:
+        if len(os.fsencode(part)) > limit:
+            shown = part[:40] + "…"
+            raise UsageError(
+                f"{option}: the name '{shown}' is {len(os.fsencode(part))} bytes long; the file system allows {limit}"
+            )
+
+
+def _name_max(path: Path) -> int:
+    """NAME_MAX of the file system that would hold ``path``: asked of its nearest existing ancestor."""
+    probe = path.absolute()
+    for candidate in (probe, *probe.parents):
+        try:
+            if candidate.exists():
+                return int(os.pathconf(candidate, "PC_NAME_MAX"))
+        except (OSError, ValueError):
+            continue
+    return NAME_MAX
+
+
 def plan_outputs(specs: list[Path], output: str | Path, fmt: str, *, force: bool) -> list[Path]:
     """Where each result goes; refuse to overwrite a spec, or an existing file without --force.
 
@@ -132,6 +167,7 @@ def plan_outputs(specs: list[Path], output: str | Path, fmt: str, *, force: bool
     ext = EXTENSIONS[fmt]
     text = str(output)
     out = Path(output)
+    check_output_path(out)
     if len(specs) > 1 or out.is_dir() or text.endswith(("/", os.sep)):
         if out.exists() and not out.is_dir():
             raise UsageError(f"-o {text}: several specs need a directory, and this is a file")
@@ -143,6 +179,7 @@ def plan_outputs(specs: list[Path], output: str | Path, fmt: str, *, force: bool
     else:
         targets = [out]
     for target in targets:
+        check_output_path(target)
         if _is_spec(target, specs):
             raise UsageError(f"refusing to overwrite the spec {target} with the solution; choose another -o")
         if target.is_dir():
