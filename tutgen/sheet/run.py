@@ -69,6 +69,7 @@ def plan_sheet(
     --variants and --students, paths that collide or that a file system cannot hold, an output onto
     or around an input file, an existing output without --force."""
     from tutgen.api import check_output_path
+    from tutgen.limits import stage
     from tutgen.sheet.build import file_names
     from tutgen.sheet.model import load_roster, load_sheet
     from tutgen.sheet.variants import variant_ids
@@ -79,6 +80,7 @@ def plan_sheet(
         raise UsageError("give --variants or --students, not both")
     out = Path(output)
     check_output_path(out)
+    stage("loading the sheet", sheet_file.name)
     if out.exists() and not out.is_dir():
         raise UsageError(f"-o {output}: this is a file; a sheet needs a directory")
     errors: list[SpecError] = []
