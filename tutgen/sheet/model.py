@@ -46,7 +46,8 @@ ID_RE = re.compile(r"[A-Za-z0-9][A-Za-z0-9._-]{0,63}")
 MAX_ROSTER_FIELD = 1000
 MAX_ROSTER_BYTES = 16 * 1024 * 1024
 #: Ids that cannot name a student's directory: the sheet's own file beside them (``variants/index.csv``)
-#: and the names Windows reserves for devices (``CON``, ``nul.txt``, …), in any case.
+#: and the names Windows reserves for devices, with or without an extension (``CON``, ``nul.txt``), in
+#: any case.
 RESERVED_IDS = frozenset({"index.csv"})
 WINDOWS_DEVICES = frozenset(
     {"con", "prn", "aux", "nul", *(f"com{i}" for i in range(10)), *(f"lpt{i}" for i in range(10))}

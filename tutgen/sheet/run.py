@@ -30,13 +30,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from tutgen.errors import SpecError, SpecErrors, UsageError
-from tutgen.sheet.model import Sheet
+from tutgen.sheet.model import WINDOWS_DEVICES, Sheet
 from tutgen.sheet.variants import Variant
 
-#: Names Windows reserves for devices, with or without an extension (``NUL``, ``con.txt``).
-WINDOWS_DEVICES = frozenset(
-    {"con", "prn", "aux", "nul", *(f"com{i}" for i in range(10)), *(f"lpt{i}" for i in range(10))}
-)
 #: What may sit at the top of a sheet's output (anything under ``variants/`` is the sheet's own).
 _OUTPUT_ENTRY = re.compile(r"(?:questions|solutions)(?:[.-][A-Za-z0-9._-]*)?|variants")
 
@@ -166,11 +162,9 @@ def check_existing(out: Path, inputs: Sequence[Path], *, force: bool) -> None:
         raise UsageError(f"{out} exists and is not empty; add --force to replace it with the new sheet")
     foreign = [e for e in entries if not _OUTPUT_ENTRY.fullmatch(e)]
     if foreign:
+        more = f" (and {len(foreign) - 1} more)" if len(foreign) > 1 else ""
         raise UsageError(
-            f"refusing to replace {out}: it holds {out / foreign[0]}, which is not part of a sheet's output "
-            f"(and {len(foreign) - 1} more)"
-            if len(foreign) > 1
-            else f"refusing to replace {out}: it holds {out / foreign[0]}, which is not part of a sheet's output"
+            f"refusing to replace {out}: it holds {out / foreign[0]}, which is not part of a sheet's output{more}"
         )
 
 
