@@ -15,10 +15,8 @@ EXTENSIONS = {"md": ".md", "tex": ".tex", "pdf": ".pdf", "json": ".json"}
 
 def render(derivation: object, fmt: str, template_dir: Path | None = None) -> str | bytes:
     """Render one derivation in a format: 'md', 'tex', 'json' give text, 'pdf' gives bytes
-    (the 'tex' document compiled with latexmk; :class:`tutgen.render.pdf.PdfError` if it cannot be)."""
-    from tutgen.engine.derivation import Derivation
-
-    assert isinstance(derivation, Derivation)
+    (the 'tex' document compiled with latexmk; :class:`tutgen.render.pdf.PdfError` if it cannot be).
+    An error in a user's template (``template_dir``) is a :class:`~tutgen.errors.TemplateError`."""
     with user_template_errors(template_dir):
         return _render(derivation, fmt, template_dir)
 
