@@ -4,16 +4,24 @@ from __future__ import annotations
 
 import os
 import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
-from tutgen.errors import SpecError, SpecErrors, UsageError
+from tutgen.errors import Location, SpecError, SpecErrors, TemplateError, UsageError
 
 EXTENSIONS = {"md": ".md", "tex": ".tex", "pdf": ".pdf", "json": ".json"}
 
 
 def render(derivation: object, fmt: str, template_dir: Path | None = None) -> str | bytes:
     """Render one derivation in a format: 'md', 'tex', 'json' give text, 'pdf' gives bytes
-    (the 'tex' document compiled with latexmk; :class:`tutgen.render.pdf.PdfError` if it cannot be)."""
+    (the 'tex' document compiled with latexmk; :class:`tutgen.render.pdf.PdfError` if it cannot be).
+    An error in a user's template (``template_dir``) is a :class:`~tutgen.errors.TemplateError`."""
+    with user_template_errors(template_dir):
+        return _render(derivation, fmt, template_dir)
+
+
+def _render(derivation: object, fmt: str, template_dir: Path | None) -> str | bytes:
     from tutgen.engine.derivation import Derivation
 
     assert isinstance(derivation, Derivation)
@@ -35,6 +43,46 @@ def render(derivation: object, fmt: str, template_dir: Path | None = None) -> st
     return render_markdown(derivation, template_dir)
 
 
+@contextmanager
+def user_template_errors(template_dir: Path | None) -> Iterator[None]:
+    """Errors of a user's templates as :class:`~tutgen.errors.TemplateError` (a usage error, exit 2),
+    located at the template line where Jinja stopped. Without ``template_dir`` the templates are
+    tutgen's own, and an error in them is a bug: it is let through."""
+    import jinja2
+
+    try:
+        yield
+    except jinja2.TemplateSyntaxError as err:
+        if template_dir is None:
+            raise
+        where = Location(err.filename or err.name or str(template_dir), err.lineno or 0)
+        raise TemplateError(where, f"template syntax: {err.message}") from None
+    except jinja2.TemplateError as err:
+        if template_dir is None:
+            raise
+        # "undefined", "unsafe" (the sandbox) or "not found"; Jinja puts the template's frames, with
+        # the template's file and line, into the traceback
+        raise TemplateError(_template_frame(err, template_dir), f"template: {err.message or err}") from None
+    except RecursionError as err:
+        where = _template_frame(err, template_dir) if template_dir is not None else None
+        if where is None or where.line == 0:  # not in a user's template: not the user's error
+            raise
+        raise TemplateError(where, "the templates include or call themselves without end") from None
+
+
+def _template_frame(err: BaseException, template_dir: Path) -> Location:
+    """The last traceback frame that runs a file of ``template_dir`` (or the directory itself)."""
+    root = os.path.realpath(template_dir)
+    found = Location(str(template_dir))
+    tb = err.__traceback__
+    while tb is not None:
+        name = tb.tb_frame.f_code.co_filename
+        if name.startswith(str(template_dir)) or os.path.realpath(name).startswith(root + os.sep):
+            found = Location(name, tb.tb_lineno)
+        tb = tb.tb_next
+    return found
+
+
 def solve_specs(
     paths: list[Path],
     fmt: str,
@@ -42,28 +90,71 @@ def solve_specs(
     template_dir: Path | None = None,
     timeout: float | None = None,
 ) -> list[str | bytes]:
-    """Load every spec (reporting all their errors at once), derive each (each within ``timeout``
-    seconds, None or 0 for no limit), render each."""
+    """Load every spec (reporting all their errors at once), derive each, render each: all of it
+    within ``timeout`` seconds (None or 0 for no limit), one budget shared by the three stages, so a
+    :class:`~tutgen.errors.DerivationTimeout` names the stage it ran out in."""
     from tutgen.engine.pipeline import derive_with_deadline
+    from tutgen.limits import deadline, stage
     from tutgen.spec.validate import load_system
 
-    systems = []
-    errors: list[SpecError] = []
-    for path in paths:
-        try:
-            systems.append(load_system(path))
-        except SpecErrors as exc:
-            errors += exc.errors
-    if errors:
-        raise SpecErrors(errors)
+    if template_dir is not None and not template_dir.is_dir():
+        raise UsageError(f"--template-dir {template_dir}: not a directory")
     if fmt == "pdf":
         from tutgen.render.pdf import find_latexmk
 
         find_latexmk()  # no LaTeX: say so before the slow part
-    if template_dir is not None and not template_dir.is_dir():
-        raise UsageError(f"--template-dir {template_dir}: not a directory")
-    derivations = [derive_with_deadline(system, method, timeout) for system in systems]
-    return [render(d, fmt, template_dir) for d in derivations]
+    with deadline(timeout):
+        systems = []
+        errors: list[SpecError] = []
+        for path in paths:
+            stage("loading the specs", path.name)
+            try:
+                systems.append(load_system(path))
+            except SpecErrors as exc:
+                errors += exc.errors
+        if errors:
+            raise SpecErrors(errors)
+        derivations = [derive_with_deadline(system, method, timeout) for system in systems]
+        texts = []
+        for path, d in zip(paths, derivations, strict=True):
+            stage("rendering", f"{path.name} as {fmt}")
+            texts.append(render(d, fmt, template_dir))
+        return texts
+
+
+#: Used where the file system cannot be asked (``pathconf``): the limits of Linux and macOS.
+NAME_MAX = 255
+PATH_MAX = 4096
+
+
+def check_output_path(path: Path, option: str = "-o") -> None:
+    """Refuse, as a usage error, an output path no file system can hold: a NUL byte, a name longer
+    than the file system allows (``NAME_MAX``, in bytes), a path longer than ``PATH_MAX``."""
+    text = str(path)
+    if "\0" in text:
+        raise UsageError(f"{option}: a path cannot contain a NUL character")
+    encoded = os.fsencode(text)
+    if len(encoded) >= PATH_MAX:
+        raise UsageError(f"{option}: the path is {len(encoded)} bytes long; at most {PATH_MAX - 1} are allowed")
+    limit = _name_max(path)
+    for part in path.parts:
+        if len(os.fsencode(part)) > limit:
+            shown = part[:40] + "…"
+            raise UsageError(
+                f"{option}: the name '{shown}' is {len(os.fsencode(part))} bytes long; the file system allows {limit}"
+            )
+
+
+def _name_max(path: Path) -> int:
+    """NAME_MAX of the file system that would hold ``path``: asked of its nearest existing ancestor."""
+    probe = path.absolute()
+    for candidate in (probe, *probe.parents):
+        try:
+            if candidate.exists():
+                return int(os.pathconf(candidate, "PC_NAME_MAX"))
+        except (OSError, ValueError):
+            continue
+    return NAME_MAX
 
 
 def plan_outputs(specs: list[Path], output: str | Path, fmt: str, *, force: bool) -> list[Path]:
@@ -75,6 +166,7 @@ def plan_outputs(specs: list[Path], output: str | Path, fmt: str, *, force: bool
     ext = EXTENSIONS[fmt]
     text = str(output)
     out = Path(output)
+    check_output_path(out)
     if len(specs) > 1 or out.is_dir() or text.endswith(("/", os.sep)):
         if out.exists() and not out.is_dir():
             raise UsageError(f"-o {text}: several specs need a directory, and this is a file")
@@ -86,6 +178,7 @@ def plan_outputs(specs: list[Path], output: str | Path, fmt: str, *, force: bool
     else:
         targets = [out]
     for target in targets:
+        check_output_path(target)
         if _is_spec(target, specs):
             raise UsageError(f"refusing to overwrite the spec {target} with the solution; choose another -o")
         if target.is_dir():

@@ -103,15 +103,55 @@ class UsageError(TutgenError):
     """A command-line mistake that Click itself cannot see (e.g. -o would overwrite a spec)."""
 
     exit_code = EXIT_USAGE
+    #: whether the text starts with its own ``file:line: error:`` (else the CLI puts "error: " in front)
+    located = False
+
+
+class TemplateError(UsageError):
+    """An error in a user's template (``--template-dir``): its syntax, an undefined variable, something
+    the sandbox refuses, a template that includes itself forever; located at the template's line."""
+
+    located = True
+
+    def __init__(self, location: Location, message: str) -> None:
+        self.location = location
+        self.message = message
+        super().__init__(f"{location}: error: {message}")
 
 
 class DerivationTimeout(DerivationError):
-    """A derivation ran past its time limit (``tutgen solve --timeout``); ``step`` is where it was."""
+    """A run went past its time limit (``--timeout``); ``stage`` is the part of the run it was in
+    ("derivation", "rendering", "LaTeX compile", …) and ``step`` where in it."""
 
-    def __init__(self, seconds: float, step: str) -> None:
+    def __init__(self, seconds: float, step: str, stage: str = "derivation") -> None:
         self.seconds = seconds
         self.step = step
+        self.stage = stage
         shown = f"{seconds:g}"
-        super().__init__(
-            f"the derivation did not finish within {shown} s (it was at: {step}); simplify the spec or raise --timeout"
-        )
+        if stage == "derivation":
+            text = f"the derivation did not finish within {shown} s (it was at: {step})"
+        else:
+            # the budget is shared by the whole run: say so, the derivation may have used most of it
+            text = (
+                f"the run did not finish within {shown} s (--timeout covers load, derive and render; "
+                f"it was at: {stage}, {step})"
+            )
+        super().__init__(f"{text}; simplify the spec or raise --timeout")
+
+
+#: What a shell reports for a program stopped by SIGINT (128 + 2) and by SIGTERM (128 + 15).
+EXIT_INTERRUPTED = 130
+EXIT_TERMINATED = 143
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised as an exception (``tutgen.cli`` installs the handler) so that cleanup runs: a
+    LaTeX compile's process group is killed, worker processes are stopped, temporary files removed.
+    A :class:`KeyboardInterrupt`, so code that stops on Ctrl-C stops on it too."""
+
+    exit_code = EXIT_TERMINATED
+
+
+def raise_terminated(signum: int, frame: object) -> None:
+    """A SIGTERM handler: raise :class:`Terminated`."""
+    raise Terminated()

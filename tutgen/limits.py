@@ -4,24 +4,43 @@ sympy can take a very long time on a large spec (a long spatial chain); rather t
 and says where it was. :func:`deadline` arms a one-shot ``SIGALRM`` timer; :func:`checkpoint` records
 the step the engine is at, so the :class:`~tutgen.errors.DerivationTimeout` names it. Signals only
 reach the main thread, so off it (and with no limit) :func:`deadline` does nothing.
+
+One deadline covers a whole run (``tutgen solve --timeout``: load, derive and render; the budget is
+shared, so what the derivation used is gone for rendering): :func:`stage` names the part of the run
+the timeout is charged to, :func:`remaining` is what is left (a LaTeX compile gets no more than that),
+and :func:`shielded` holds off the alarm, SIGINT and SIGTERM while cleanup that must finish runs
+(killing a process group, removing a temporary directory, renaming an output into place).
 """
 
 from __future__ import annotations
 
 import signal
 import threading
+import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
 
 from tutgen.errors import DerivationTimeout
 
-__all__ = ["DEFAULT_TIMEOUT", "checkpoint", "current_step", "deadline"]
+__all__ = [
+    "DEFAULT_TIMEOUT",
+    "checkpoint",
+    "current_step",
+    "deadline",
+    "out_of_time",
+    "remaining",
+    "shielded",
+    "stage",
+]
 
 #: Seconds a derivation may take unless ``--timeout`` says otherwise.
 DEFAULT_TIMEOUT: float = 120
 
-_state: dict[str, Any] = {"step": "start", "armed": False, "expired": None}
+_state: dict[str, Any] = {"step": "start", "stage": "derivation", "armed": False, "expired": None, "ends": None}
+
+#: The signals :func:`shielded` holds off.
+_SHIELDED = {signal.SIGALRM, signal.SIGINT, signal.SIGTERM} if hasattr(signal, "SIGALRM") else set()
 
 
 def checkpoint(step: str) -> None:
@@ -31,8 +50,46 @@ def checkpoint(step: str) -> None:
     """
     expired = _state["expired"]
     if expired is not None:
-        raise DerivationTimeout(expired, current_step())
+        raise DerivationTimeout(expired, current_step(), _state["stage"])
     _state["step"] = step
+
+
+def stage(name: str, step: str = "start") -> None:
+    """Charge what follows to the part of the run ``name`` ("derivation", "rendering", "loading the
+    specs"); ``step`` says where in it (e.g. the file being rendered). Like :func:`checkpoint`, this
+    raises again once the deadline has passed."""
+    checkpoint(step)
+    _state["stage"] = name
+
+
+def remaining() -> float | None:
+    """Seconds left before the active deadline (at least a little above 0), None when there is none."""
+    ends = _state["ends"]
+    if ends is None:
+        return None
+    return max(0.01, ends - time.monotonic())
+
+
+def out_of_time(stage_name: str, step: str) -> DerivationTimeout:
+    """The error of a run whose deadline has passed, charged to ``stage_name`` at ``step`` (for work
+    that watches :func:`remaining` itself, such as a LaTeX compile, rather than wait for the alarm)."""
+    return DerivationTimeout(_state.get("seconds") or 0, step, stage_name)
+
+
+@contextmanager
+def shielded() -> Iterator[None]:
+    """Hold off SIGALRM, SIGINT and SIGTERM while the block runs (cleanup that must not be cut short);
+    a signal that arrives meanwhile is delivered when the block ends. Off the main thread, or where
+    signal masks do not exist, the block just runs."""
+    usable = hasattr(signal, "pthread_sigmask") and threading.current_thread() is threading.main_thread()
+    if not usable:
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, _SHIELDED)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
 def current_step() -> str:
@@ -64,11 +121,14 @@ def deadline(seconds: float | None) -> Iterator[None]:
         # sympy has a few ``except Exception`` blocks: keep firing until the block is really left
         _state["expired"] = seconds
         signal.setitimer(signal.ITIMER_REAL, 0.25)
-        raise DerivationTimeout(seconds, current_step())
+        raise DerivationTimeout(seconds, current_step(), _state["stage"])
 
     previous = signal.signal(signal.SIGALRM, expire)
     _state["armed"] = True
     _state["step"] = "start"
+    _state["stage"] = "derivation"
+    _state["ends"] = time.monotonic() + float(seconds)
+    _state["seconds"] = seconds
     signal.setitimer(signal.ITIMER_REAL, float(seconds))
     try:
         yield
@@ -77,3 +137,4 @@ def deadline(seconds: float | None) -> Iterator[None]:
         signal.signal(signal.SIGALRM, previous)
         _state["armed"] = False
         _state["expired"] = None
+        _state["ends"] = None

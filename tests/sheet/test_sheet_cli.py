@@ -130,8 +130,29 @@ def test_sheet_refuses_existing_files_and_bad_options(small: tuple[Path, Path], 
     assert run("sheet", sheet).exit_code == EXIT_USAGE
     both = run("sheet", sheet, "-o", tmp_path / "x", "--variants", "2", "--students", sheet)
     assert both.exit_code == EXIT_USAGE and "not both" in both.output
+    before = tree(sheet.parent)
     onto = run("sheet", sheet, "-o", sheet.parent, "--force")
-    assert onto.exit_code == EXIT_OK  # writes questions.md and solutions.md beside the sheet, never onto it
+    # -o is replaced as a whole, so a directory holding the sheet itself is never an output
+    assert onto.exit_code == EXIT_USAGE and f"the input {sheet} is inside it" in onto.output
+    assert tree(sheet.parent) == before
+
+
+def test_sheet_force_replaces_the_whole_output(small: tuple[Path, Path], tmp_path: Path) -> None:
+    """--force puts the new output in the old one's place: nothing of the old run is left (v003 of a
+    three-variant run is gone after a two-variant run), and nothing that is not a sheet's is deleted."""
+    sheet, _ = small
+    out = tmp_path / "out"
+    assert run("sheet", sheet, "-o", out, "--variants", "3", "-j", "1").exit_code == EXIT_OK
+    assert (out / "variants" / "v003").is_dir()
+    again = run("sheet", sheet, "-o", out, "--variants", "2", "-j", "1", "--force")
+    assert again.exit_code == EXIT_OK, again.output
+    assert sorted(p.name for p in (out / "variants").iterdir()) == ["index.csv", "v001", "v002"]
+    (out / "notes.txt").write_text("mine", encoding="utf-8")
+    before = tree(out)
+    refused = run("sheet", sheet, "-o", out, "--variants", "2", "-j", "1", "--force")
+    assert refused.exit_code == EXIT_USAGE and "notes.txt, which is not part of a sheet's output" in refused.output
+    assert tree(out) == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]  # no temporary directory, no lock file left
 
 
 def test_sheet_bad_files_are_located_without_traceback(tmp_path: Path) -> None:

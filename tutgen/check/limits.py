@@ -10,7 +10,7 @@ Two layers, because neither is enough alone:
   after ``--file-timeout`` seconds and whose address space is capped (:func:`cap_memory`): a hostile
   expression can end its own file's marking, never the class run.
 
-The spec's derivation is bounded as for ``tutgen solve`` (:func:`tutgen.limits.derive_with_deadline`).
+The spec's derivation is bounded as for ``tutgen solve`` (:func:`tutgen.engine.pipeline.derive_with_deadline`).
 """
 
 from __future__ import annotations

@@ -129,7 +129,8 @@ def load_reference(
     ``derive_timeout`` seconds (default: ``tutgen solve``'s, :data:`tutgen.limits.DEFAULT_TIMEOUT`)."""
     from tutgen.check.compare import key_problems, reference_from
     from tutgen.check.key import read_key
-    from tutgen.limits import DEFAULT_TIMEOUT, derive_with_deadline
+    from tutgen.engine.pipeline import derive_with_deadline
+    from tutgen.limits import DEFAULT_TIMEOUT
     from tutgen.spec.validate import load_system
 
     marking_key = read_key(key) if key is not None else None

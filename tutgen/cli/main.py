@@ -12,7 +12,7 @@ import typer
 
 from tutgen import __version__
 from tutgen.cli import check, schema_cmd, sheet, solve
-from tutgen.cli.errors import set_debug
+from tutgen.cli.errors import install_signal_handlers, set_debug
 
 app = typer.Typer(
     name="tutgen",
@@ -39,9 +39,10 @@ def main(
     """Worked solutions for rigid-body and robot dynamics problems, from a short YAML spec.
 
     Exit codes: 0 ok, 1 answers wrong (check), 2 usage error, 3 invalid spec,
-    4 valid spec that tutgen cannot derive, 70 internal error.
+    4 valid spec that tutgen cannot derive, 70 internal error, 130 interrupted, 143 terminated.
     """
     set_debug(debug)
+    install_signal_handlers()
 
 
 app.command(name="solve")(solve.solve)

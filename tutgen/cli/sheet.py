@@ -11,7 +11,7 @@ from typing import Annotated
 
 import typer
 
-from tutgen.cli.errors import handle_errors
+from tutgen.cli.errors import echo_error, handle_errors
 from tutgen.limits import DEFAULT_TIMEOUT
 
 
@@ -79,30 +79,44 @@ def sheet(
     force: Annotated[bool, typer.Option("--force", help="Overwrite existing output files.")] = False,
     timeout: Annotated[
         float,
-        typer.Option("--timeout", metavar="SECONDS", min=0, help="Stop a derivation after this long (0: no limit)."),
+        typer.Option(
+            "--timeout",
+            metavar="SECONDS",
+            min=0,
+            help="Stop the run (reading, deriving and building the sheets) after this long (0: no limit).",
+        ),
     ] = DEFAULT_TIMEOUT,
 ) -> None:
     """Build the question sheet and the solution sheet of SHEET, and with --variants or --students a
     variant per student: its concrete specs, question and solution sheets and answer keys.
 
-    Everything is derived and rendered first; nothing is written unless all of it succeeds.
+    Everything is derived and rendered first; nothing is written unless all of it succeeds, and then
+    the whole output directory is put in place at once (an existing one is replaced only with --force).
     The same --seed gives the same variants, byte for byte, on any machine and any number of workers.
     """
+    from tutgen.limits import deadline
     from tutgen.sheet.run import plan_sheet, run_sheet
 
-    plan = plan_sheet(
-        sheet,
-        output,
-        formats=[f.value for f in formats or [SheetFormat.md]],
-        variants=variants,
-        students=students,
-        force=force,
-    )
-    with _progress(plan.jobs, progress) as advance:
-        report = run_sheet(
-            plan, seed=seed, workers=workers, scheduler=scheduler, timeout=timeout, method=method.value, on_done=advance
+    with deadline(timeout):  # one budget: reading the sheet, deriving, building
+        plan = plan_sheet(
+            sheet,
+            output,
+            formats=[f.value for f in formats or [SheetFormat.md]],
+            variants=variants,
+            students=students,
+            force=force,
         )
-    typer.echo(report, err=True)
+        with _progress(plan.jobs, progress) as advance:
+            report = run_sheet(
+                plan,
+                seed=seed,
+                workers=workers,
+                scheduler=scheduler,
+                timeout=timeout,
+                method=method.value,
+                on_done=advance,
+            )
+    echo_error(report)
 
 
 @contextmanager

@@ -56,7 +56,8 @@ def solve(
             "--timeout",
             metavar="SECONDS",
             min=0,
-            help="Stop a derivation that takes longer than this, saying which step it was at (0: no limit).",
+            help="Stop a run (reading, deriving and rendering, one budget) that takes longer than this, "
+            "saying which stage and step it was at (0: no limit).",
         ),
     ] = DEFAULT_TIMEOUT,
     template_dir: Annotated[

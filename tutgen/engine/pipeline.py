@@ -84,6 +84,7 @@ def derive_with_deadline(system: System, method: str = "both", seconds: float | 
     """
     try:
         with deadline(seconds):
+            stage("derivation")
             return derive(system, method)
     except DerivationTimeout as exc:
         if exc.location is None:

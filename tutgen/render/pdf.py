@@ -2,8 +2,13 @@
 
 Safety: ``latexmk -norc`` (no user or system latexmkrc runs), ``-no-shell-escape`` and
 ``shell_escape=f`` (no \\write18), ``openin_any=p`` and ``openout_any=p`` (TeX may read and write
-only below the working directory, a fresh temporary one), a wall-clock timeout, and
+only below the working directory, a fresh temporary one), and
 ``-interaction=nonstopmode -halt-on-error`` so a bad document never waits for input.
+Bounded: latexmk runs in its own session (a process group of its own, with pdflatex under it) for at
+most the time left of the run's ``--timeout`` (:func:`tutgen.limits.remaining`; without one, 120 s),
+and the files it writes (log, output) may together reach :data:`MAX_OUTPUT_BYTES`. Past either limit,
+on any exception, and on SIGINT/SIGTERM of tutgen (which the CLI turns into exceptions), the whole
+group is killed, and the temporary directory is always removed.
 Reproducibility: ``SOURCE_DATE_EPOCH`` (default 0) and ``FORCE_SOURCE_DATE=1`` fix the dates
 pdfTeX writes, and ``\\pdftrailerid{}`` in the preamble drops the random document ID.
 """
@@ -12,15 +17,22 @@ from __future__ import annotations
 
 import os
 import shutil
+import signal
 import subprocess
 import tempfile
+import time
 from pathlib import Path
 
 from tutgen.errors import TutgenError
 
 EXIT_PDF_FAILED = 6
 DEBIAN_PACKAGES = "texlive-latex-base texlive-latex-recommended texlive-pictures latexmk"
+#: Seconds a compile may take when no run deadline is armed.
 DEFAULT_TIMEOUT = 120.0
+#: What latexmk and pdflatex may write in all (the log of a looping document grows at ~25 MB/s).
+MAX_OUTPUT_BYTES = 64 * 1024 * 1024
+#: How often the running compile is looked at (time, output size).
+POLL_SECONDS = 0.05
 
 
 class PdfError(TutgenError):
@@ -40,8 +52,16 @@ def find_latexmk() -> str:
     return exe
 
 
-def compile_pdf(tex: str, timeout: float = DEFAULT_TIMEOUT) -> bytes:
-    """Compile a complete LaTeX document; return the PDF's bytes."""
+def compile_pdf(tex: str, timeout: float | None = None) -> bytes:
+    """Compile a complete LaTeX document; return the PDF's bytes.
+
+    ``timeout``: at most this many seconds (default :data:`DEFAULT_TIMEOUT`), and never more than the
+    run's deadline leaves (:func:`tutgen.limits.remaining`); past the deadline this raises the run's
+    :class:`~tutgen.errors.DerivationTimeout` (stage "LaTeX compile"), past ``timeout`` a
+    :class:`PdfError`. Either way, and on any exception, no process of the compile is left running.
+    """
+    from tutgen.limits import out_of_time, remaining, shielded, stage
+
     latexmk = find_latexmk()
     env = dict(os.environ)
     env.update(
@@ -52,8 +72,14 @@ def compile_pdf(tex: str, timeout: float = DEFAULT_TIMEOUT) -> bytes:
         FORCE_SOURCE_DATE="1",
         TEXMFOUTPUT="",
     )
-    with tempfile.TemporaryDirectory(prefix="tutgen-tex-") as tmp:
-        work = Path(tmp)
+    own = DEFAULT_TIMEOUT if timeout is None or timeout <= 0 else timeout
+    budget = remaining()
+    limit = own if budget is None else min(own, budget)
+    if budget is not None:
+        stage("LaTeX compile", "compiling the PDF")  # what the alarm, if it comes first, names
+    work = Path(tempfile.mkdtemp(prefix="tutgen-tex-"))
+    proc: subprocess.Popen[bytes] | None = None
+    try:
         (work / "solution.tex").write_text(tex, encoding="utf-8")
         cmd = [
             latexmk,
@@ -66,20 +92,96 @@ def compile_pdf(tex: str, timeout: float = DEFAULT_TIMEOUT) -> bytes:
             "-quiet",
             "solution.tex",
         ]
-        try:
-            proc = subprocess.run(
-                cmd, cwd=work, env=env, capture_output=True, text=True, timeout=timeout, stdin=subprocess.DEVNULL
+        with open(work / "latexmk.out", "wb") as out:
+            with shielded():  # the child and its pid are known together, or there is no child
+                proc = subprocess.Popen(
+                    cmd, cwd=work, env=env, stdin=subprocess.DEVNULL, stdout=out, stderr=out, start_new_session=True
+                )
+            _limit_file_size(proc.pid)
+        stopped = _watch(proc, work, limit)
+        if stopped == "time":
+            if budget is not None and budget <= own:
+                raise out_of_time("LaTeX compile", "compiling the PDF")
+            raise PdfError(f"error: LaTeX did not finish within {limit:g} s; no PDF was written")
+        if stopped == "size":
+            raise PdfError(
+                f"error: LaTeX wrote more than {MAX_OUTPUT_BYTES // (1024 * 1024)} MiB of log and output and was "
+                "stopped; no PDF was written"
             )
-        except subprocess.TimeoutExpired:
-            raise PdfError(f"error: LaTeX did not finish within {timeout:g} s; no PDF was written") from None
         pdf = work / "solution.pdf"
         if proc.returncode != 0 or not pdf.exists():
-            log = (
-                (work / "solution.log").read_text(encoding="utf-8", errors="replace")
-                if (work / "solution.log").exists()
-                else proc.stdout + proc.stderr
-            )
-            lines = [ln for ln in log.splitlines() if ln.startswith("!") or ":error:" in ln or ".tex:" in ln]
-            detail = "\n  ".join(lines[:8]) or (proc.stderr.strip()[-800:] or "no log")
-            raise PdfError(f"error: LaTeX could not compile the solution (a tutgen bug):\n  {detail}")
+            raise PdfError(f"error: LaTeX could not compile the solution (a tutgen bug):\n  {_log_excerpt(work)}")
         return pdf.read_bytes()
+    finally:
+        with shielded():  # neither the alarm nor a second Ctrl-C may cut the cleanup short
+            if proc is not None:
+                _kill_group(proc)
+            shutil.rmtree(work, ignore_errors=True)
+
+
+def _watch(proc: subprocess.Popen[bytes], work: Path, limit: float) -> str | None:
+    """Wait for latexmk; "time" or "size" when it had to be stopped (it is not yet killed then)."""
+    ends = time.monotonic() + limit
+    while True:
+        try:
+            proc.wait(timeout=POLL_SECONDS)
+            return None
+        except subprocess.TimeoutExpired:
+            pass
+        if time.monotonic() >= ends:
+            return "time"
+        if _size(work) > MAX_OUTPUT_BYTES:
+            return "size"
+
+
+def _size(work: Path) -> int:
+    total = 0
+    try:
+        with os.scandir(work) as entries:
+            for entry in entries:
+                try:
+                    total += entry.stat(follow_symlinks=False).st_size
+                except OSError:
+                    pass
+    except OSError:
+        pass
+    return total
+
+
+def _limit_file_size(pid: int) -> None:
+    """Cap the size of any one file latexmk and its children write (``RLIMIT_FSIZE``, inherited by
+    pdflatex), besides the watch on the total: a second guard, where the platform has it."""
+    try:
+        import resource
+
+        resource.prlimit(pid, resource.RLIMIT_FSIZE, (MAX_OUTPUT_BYTES, MAX_OUTPUT_BYTES))
+    except (ImportError, AttributeError, OSError, ValueError):  # not Linux, or latexmk already gone
+        pass
+
+
+def _kill_group(proc: subprocess.Popen[bytes]) -> None:
+    """Kill latexmk's process group (pdflatex with it) and reap latexmk.
+
+    While latexmk is unreaped its pid cannot be reused, so the group id is still ours: kill first,
+    then wait. After a normal exit the group is usually empty; a straggler is killed all the same.
+    """
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        pass
+    try:
+        proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:  # pragma: no cover - SIGKILL is not ignored
+        pass
+
+
+def _log_excerpt(work: Path) -> str:
+    log_file = work / "solution.log"
+    raw = log_file if log_file.exists() else work / "latexmk.out"
+    try:
+        with open(raw, "rb") as fh:
+            log = fh.read(1024 * 1024).decode("utf-8", errors="replace")
+    except OSError:
+        log = ""
+    lines = [ln for ln in log.splitlines() if ln.startswith("!") or ":error:" in ln or ".tex:" in ln]
+    return "\n  ".join(lines[:8]) or (log.strip()[-800:] or "no log")

@@ -256,12 +256,15 @@ def _index(variants: Sequence[Variant], results: Sequence[JobResult]) -> str:
         for problem, name, _ in result.values:
             if (problem, name) not in columns:
                 columns.append((problem, name))
+    from tutgen.safetext import csv_cell
+
     buf = io.StringIO()
     writer = csv.writer(buf, lineterminator="\n")
     writer.writerow(["id", "label", *(f"{p}:{n}" for p, n in columns)])
     for v, result in zip(variants, results, strict=True):
         got = {(p, n): text for p, n, text in result.values}
-        writer.writerow([v.id, v.label, *(got.get(c, "") for c in columns)])
+        # a student's name is the roster's text: a spreadsheet must not read it as a formula
+        writer.writerow([csv_cell(v.id), csv_cell(v.label), *(csv_cell(got.get(c, "")) for c in columns)])
     return buf.getvalue()
 
 

@@ -8,16 +8,33 @@ in, so the output never depends on the number of workers:
 - :class:`ProcessExecutor`: a ``concurrent.futures.ProcessPoolExecutor`` (``--workers N``);
 - :class:`DaskExecutor`: a Dask distributed scheduler (``--scheduler ADDRESS``; the optional extra
   ``tutgen[dask]``). Dask is imported only when this one is made.
+
+Workers end with the parent: a pool's workers ignore SIGINT (Ctrl-C reaches the whole terminal
+group; the parent decides) and, when the parent stops for any reason (an error, the deadline,
+Ctrl-C, SIGTERM), it terminates them (SIGTERM, then SIGKILL after a grace period) before it goes on.
+A worker that gets SIGTERM while it builds runs its cleanup first (a LaTeX compile's process group,
+its temporary directory), then exits; an idle one exits at once.
 """
 
 from __future__ import annotations
 
 import os
+import re
+import signal
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from typing import Any, Protocol, TypeVar
 
-from tutgen.errors import UsageError
+from tutgen.errors import EXIT_TERMINATED, Terminated, UsageError
+
+#: The addresses ``--scheduler`` takes: ``[tcp|tls|ws|wss|ucx]://host:port`` or ``host:port``, and a
+#: scheduler in this process (``inproc://host/pid/n``, what a ``LocalCluster(processes=False)`` gives).
+SCHEDULER_ADDRESS = re.compile(
+    r"(?:(?:tcp|tls|ws|wss|ucx)://)?(?:\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9._-]+):\d{1,5}"
+    r"|inproc://[A-Za-z0-9._:-]+(?:/[0-9]+)*"
+)
+#: Seconds a terminated worker has to clean up before it is killed.
+WORKER_GRACE = 5.0
 
 S = TypeVar("S")
 J = TypeVar("J")
@@ -49,16 +66,46 @@ class SerialExecutor:
         return out
 
 
-_worker_state: dict[str, Any] = {}
+_worker_state: dict[str, Any] = {"busy": False}
 
 
 def _init_worker(fn: Callable[[Any, Any], Any], shared: Any) -> None:
     _worker_state["fn"] = fn
     _worker_state["shared"] = shared
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, _worker_terminated)
+    if hasattr(signal, "SIGALRM"):  # the parent's deadline handler came with the fork; the parent keeps time
+        signal.signal(signal.SIGALRM, signal.SIG_DFL)
+
+
+def _worker_terminated(signum: int, frame: object) -> None:
+    if _worker_state["busy"]:
+        raise Terminated()  # unwinds through the job's cleanup; _run_in_worker then exits
+    os._exit(EXIT_TERMINATED)
 
 
 def _run_in_worker(job: Any) -> Any:
-    return _worker_state["fn"](_worker_state["shared"], job)
+    _worker_state["busy"] = True
+    try:
+        return _worker_state["fn"](_worker_state["shared"], job)
+    except Terminated:
+        os._exit(EXIT_TERMINATED)
+    finally:
+        _worker_state["busy"] = False
+
+
+def _stop_workers(pool: ProcessPoolExecutor) -> None:
+    """Terminate every worker of ``pool`` and wait for each (SIGKILL after :data:`WORKER_GRACE`)."""
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    for proc in procs:
+        if proc.is_alive():
+            proc.terminate()
+    for proc in procs:
+        proc.join(WORKER_GRACE)
+        if proc.is_alive():
+            proc.kill()
+            proc.join(1.0)
+    pool.shutdown(wait=False, cancel_futures=True)
 
 
 class ProcessExecutor:
@@ -78,12 +125,21 @@ class ProcessExecutor:
         workers = min(self._workers, len(jobs))
         if workers <= 1:
             return SerialExecutor().map(fn, shared, jobs, on_done)
-        with ProcessPoolExecutor(max_workers=workers, initializer=_init_worker, initargs=(fn, shared)) as pool:
+        from tutgen.limits import shielded
+
+        pool = ProcessPoolExecutor(max_workers=workers, initializer=_init_worker, initargs=(fn, shared))
+        try:
             futures = [pool.submit(_run_in_worker, job) for job in jobs]
             for _ in as_completed(futures):
                 if on_done:
                     on_done()
-            return [f.result() for f in futures]
+            results = [f.result() for f in futures]
+        except BaseException:
+            with shielded():  # a second Ctrl-C or the alarm must not leave workers behind
+                _stop_workers(pool)
+            raise
+        pool.shutdown(wait=True)
+        return results
 
 
 class DaskExecutor:
@@ -96,9 +152,11 @@ class DaskExecutor:
         except ImportError:
             raise UsageError("--scheduler needs Dask: pip install 'tutgen[dask]' (dask[distributed])") from None
         if client is None:
+            assert address is not None
+            check_scheduler_address(address)
             try:
                 client = Client(address, timeout=30)
-            except (OSError, TimeoutError) as err:
+            except (OSError, TimeoutError, ValueError) as err:
                 raise UsageError(f"--scheduler {address}: cannot reach the Dask scheduler ({err})") from None
             self._owned = True
         else:
@@ -126,6 +184,19 @@ class DaskExecutor:
     def close(self) -> None:
         if self._owned:
             self.client.close()
+
+
+def check_scheduler_address(address: str) -> None:
+    """Refuse (UsageError) a ``--scheduler`` that is not a Dask scheduler's network address, such as
+    ``file://…`` or a path, before anything is derived."""
+    if not SCHEDULER_ADDRESS.fullmatch(address.strip()):
+        from tutgen.safetext import terminal_text
+
+        shown = terminal_text(address)[:80]
+        raise UsageError(
+            f"--scheduler {shown!r} is not a Dask scheduler address; expected tcp://HOST:PORT "
+            "(or tls://, ws://, wss://, ucx://, HOST:PORT, inproc://)"
+        )
 
 
 def make_executor(

@@ -15,7 +15,9 @@ A sheet file (docs/sheets.md)::
 
 ``vary`` entries have the form of a spec's ``parameters`` entries (docs/spec-format.md): they replace the
 spec's entry of that parameter (keeping its ``latex``, ``description`` and ``dimension``), so the spec file
-itself stays as it is. A roster is a CSV file with a header naming ``id`` (and optionally ``name``).
+itself stays as it is. A roster is a CSV file with a header naming ``id`` (and optionally ``name``),
+read strictly: an unclosed quote, a stray quote, a field longer than :data:`MAX_ROSTER_FIELD`
+characters is an error at its line (never a silently swallowed rest of the file).
 """
 
 from __future__ import annotations
@@ -23,7 +25,9 @@ from __future__ import annotations
 import csv
 import io
 import json
+import os
 import re
+import stat
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -38,6 +42,16 @@ SHEET_KEYS = ("tutgen_sheet", "title", "course", "date", "problems")
 PROBLEM_KEYS = ("spec", "vary")
 #: What a variant or a student id may look like: it names a directory.
 ID_RE = re.compile(r"[A-Za-z0-9][A-Za-z0-9._-]{0,63}")
+#: The longest field (in characters) a roster may hold; the longest roster file (in bytes).
+MAX_ROSTER_FIELD = 1000
+MAX_ROSTER_BYTES = 16 * 1024 * 1024
+#: Ids that cannot name a student's directory: the sheet's own file beside them (``variants/index.csv``)
+#: and the names Windows reserves for devices, with or without an extension (``CON``, ``nul.txt``), in
+#: any case.
+RESERVED_IDS = frozenset({"index.csv"})
+WINDOWS_DEVICES = frozenset(
+    {"con", "prn", "aux", "nul", *(f"com{i}" for i in range(10)), *(f"lpt{i}" for i in range(10))}
+)
 
 
 @dataclass(frozen=True)
@@ -257,17 +271,15 @@ def _merge(spec_entry: Any, vary_entry: Any) -> dict[str, Any]:
 def load_roster(path: str | Path) -> tuple[Student, ...]:
     """Read a roster: CSV, UTF-8, a header row naming ``id`` and optionally ``name`` (other columns are
     ignored); one student per row. Raise SpecErrors (``file:line:col``) for a missing column, an empty,
-    malformed or repeated id."""
+    malformed, reserved or repeated id (also one repeated in other case: ``Ada`` and ``ADA`` are one
+    directory where case does not count), a malformed row (an unclosed or stray quote) or an over-long
+    field. A roster that is not a regular file (a FIFO, a device) is refused without reading it."""
     path = Path(path)
     name = str(path)
-    try:
-        text = path.read_bytes().decode("utf-8-sig")
-    except OSError as err:
-        raise SpecErrors([SpecError(Location(name), f"cannot read file: {err.strerror or err}")]) from None
-    except UnicodeDecodeError:
-        raise SpecErrors([SpecError(Location(name), "the roster is not UTF-8 text")]) from None
-    rows = list(csv.reader(io.StringIO(text, newline="")))
-    lines = _row_lines(text)
+    text = _read_roster(path)
+    rows, lines, bad = _parse_csv(text, name)
+    if bad is not None:
+        raise SpecErrors([bad])
     errors: list[SpecError] = []
     if not rows or not any(cell.strip() for cell in rows[0]):
         raise SpecErrors(
@@ -288,7 +300,7 @@ def load_roster(path: str | Path) -> tuple[Student, ...]:
     id_col = header.index("id")
     name_col = header.index("name") if "name" in header else None
     students: list[Student] = []
-    seen: dict[str, int] = {}
+    seen: dict[str, tuple[str, int]] = {}
     for r, row in enumerate(rows[1:], start=1):
         line = lines[r] if r < len(lines) else r + 1
         if not any(cell.strip() for cell in row):
@@ -307,12 +319,23 @@ def load_roster(path: str | Path) -> tuple[Student, ...]:
                 )
             )
             continue
-        if sid in seen:
+        folded = sid.casefold()
+        if folded in RESERVED_IDS or folded.split(".")[0] in WINDOWS_DEVICES or sid.endswith("."):
             errors.append(
-                SpecError(Location(name, line, col), f"the id '{sid}' is listed twice (first on line {seen[sid]})")
+                SpecError(
+                    Location(name, line, col),
+                    f"the id '{sid}' cannot name a student's directory: it is "
+                    + ("the name of the sheet's index file" if folded in RESERVED_IDS else "reserved by Windows"),
+                    "rename the id (the directory is variants/<id>/)",
+                )
             )
             continue
-        seen[sid] = line
+        if folded in seen:
+            first, first_line = seen[folded]
+            same = "is listed twice" if first == sid else f"is the id '{first}' in other case"
+            errors.append(SpecError(Location(name, line, col), f"the id '{sid}' {same} (first on line {first_line})"))
+            continue
+        seen[folded] = (sid, line)
         student_name = row[name_col].strip() if name_col is not None and name_col < len(row) else ""
         students.append(Student(sid, student_name))
     if not students and not errors:
@@ -322,14 +345,61 @@ def load_roster(path: str | Path) -> tuple[Student, ...]:
     return tuple(students)
 
 
-def _row_lines(text: str) -> list[int]:
-    """The 1-based line on which each CSV record starts (quoted fields may span lines)."""
-    reader = csv.reader(io.StringIO(text, newline=""))
-    starts, line = [], 1
-    for _ in reader:
+def _read_roster(path: Path) -> str:
+    name = str(path)
+    try:
+        # O_NONBLOCK: a FIFO must not make the open wait for a writer; it is refused just below
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    except OSError as err:
+        raise SpecErrors([SpecError(Location(name), f"cannot read file: {err.strerror or err}")]) from None
+    with os.fdopen(fd, "rb") as fh:
+        info = os.fstat(fh.fileno())
+        if not stat.S_ISREG(info.st_mode):
+            raise SpecErrors([SpecError(Location(name), "the roster is not a regular file (a FIFO, a device?)")])
+        if info.st_size > MAX_ROSTER_BYTES:
+            raise SpecErrors(
+                [SpecError(Location(name), f"the roster is larger than {MAX_ROSTER_BYTES // (1024 * 1024)} MiB")]
+            )
+        data = fh.read(MAX_ROSTER_BYTES + 1)
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise SpecErrors([SpecError(Location(name), "the roster is not UTF-8 text")]) from None
+
+
+def _parse_csv(text: str, name: str) -> tuple[list[list[str]], list[int], SpecError | None]:
+    """The rows, the 1-based line on which each starts (quoted fields may span lines), and the first
+    error: a malformed row (``strict`` CSV), or a field over :data:`MAX_ROSTER_FIELD` characters."""
+    reader = csv.reader(io.StringIO(text, newline=""), strict=True)
+    rows: list[list[str]] = []
+    starts: list[int] = []
+    line = 1
+    while True:
+        try:
+            row = next(reader)
+        except StopIteration:
+            return rows, starts, None
+        except csv.Error as err:
+            message = str(err)
+            if "field larger than field limit" in message:
+                message = f"a field is longer than {MAX_ROSTER_FIELD} characters"
+            elif "end of data" in message:
+                message = "a quoted field is never closed (a '\"' without its closing '\"')"
+            return rows, starts, SpecError(Location(name, line), f"malformed CSV: {message}")
+        for c, cell in enumerate(row):
+            if len(cell) > MAX_ROSTER_FIELD:
+                col = 1 + sum(len(x) + 1 for x in row[:c])
+                return (
+                    rows,
+                    starts,
+                    SpecError(
+                        Location(name, line, col),
+                        f"this field is {len(cell)} characters long; a roster field has at most {MAX_ROSTER_FIELD}",
+                    ),
+                )
+        rows.append(row)
         starts.append(line)
         line = reader.line_num + 1
-    return starts
 
 
 def json_scalar(value: Any) -> str:

@@ -1,15 +1,40 @@
-"""The library face of `tutgen sheet`: check the inputs and the outputs, build, write, all or nothing."""
+"""The library face of `tutgen sheet`: check the inputs and the outputs, build, write, all or nothing.
+
+A sheet writes a whole tree, so it is planned and written as one:
+
+- **Plan every path first** (:func:`check_names`): before anything is derived, every file the build
+  will make is known, and the set is refused if two of them are the same file on some file system
+  (``Ada``/``ADA`` on a case-insensitive one), if a file is also a directory of another
+  (a student id ``index.csv`` beside ``variants/index.csv``), if a name is a Windows device (``CON``,
+  ``nul.txt``), ends in a dot or a space, or is longer than the file system allows.
+- **Write into a temporary directory beside -o, then rename it into place** (:func:`write_tree`), so
+  an interrupted or failed run leaves the old output or the new one, never a mixture. An existing,
+  non-empty ``-o`` is replaced only with ``--force``, and only if it holds nothing but a sheet's
+  output: an input inside it, or a file that is not a sheet's, is never deleted.
+- **One run per output** (:func:`output_lock`): a lock file beside ``-o`` (``flock``: released by the
+  kernel however the run ends), removed when the run ends; a second run into the same ``-o`` while
+  one holds it is refused.
+"""
 
 from __future__ import annotations
 
+import contextlib
+import errno
+import fcntl
 import os
-from collections.abc import Callable, Sequence
+import re
+import shutil
+import tempfile
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from tutgen.errors import SpecError, SpecErrors, UsageError
-from tutgen.sheet.model import Sheet
+from tutgen.sheet.model import WINDOWS_DEVICES, Sheet
 from tutgen.sheet.variants import Variant
+
+#: What may sit at the top of a sheet's output (anything under ``variants/`` is the sheet's own).
+_OUTPUT_ENTRY = re.compile(r"(?:questions|solutions)(?:[.-][A-Za-z0-9._-]*)?|variants")
 
 
 @dataclass(frozen=True)
@@ -19,6 +44,8 @@ class SheetPlan:
     formats: tuple[str, ...]
     variants: tuple[Variant, ...]
     targets: tuple[Path, ...]
+    force: bool = False
+    inputs: tuple[Path, ...] = ()
 
     @property
     def jobs(self) -> int:
@@ -34,8 +61,11 @@ def plan_sheet(
     students: Path | None = None,
     force: bool = False,
 ) -> SheetPlan:
-    """Read the sheet (and the roster), and refuse early: no -o, both --variants and --students, an
-    output onto an input file, an existing file without --force."""
+    """Read the sheet (and the roster), plan every output path, and refuse early: no -o, both
+    --variants and --students, paths that collide or that a file system cannot hold, an output onto
+    or around an input file, an existing output without --force."""
+    from tutgen.api import check_output_path
+    from tutgen.limits import stage
     from tutgen.sheet.build import file_names
     from tutgen.sheet.model import load_roster, load_sheet
     from tutgen.sheet.variants import variant_ids
@@ -45,6 +75,8 @@ def plan_sheet(
     if variants is not None and students is not None:
         raise UsageError("give --variants or --students, not both")
     out = Path(output)
+    check_output_path(out)
+    stage("loading the sheet", sheet_file.name)
     if out.exists() and not out.is_dir():
         raise UsageError(f"-o {output}: this is a file; a sheet needs a directory")
     errors: list[SpecError] = []
@@ -68,23 +100,191 @@ def plan_sheet(
         from tutgen.render.pdf import find_latexmk
 
         find_latexmk()  # no LaTeX: say so before the slow part
-    targets = tuple(out / name for name in file_names(sheet, chosen, formats))
-    inputs = [sheet.path, *(p.path for p in sheet.problems), *([students] if students else [])]
-    resolved = {p.resolve() for p in inputs}
-    existing = []
+    names = file_names(sheet, chosen, formats)
+    check_names(names)
+    targets = tuple(out / name for name in names)
     for target in targets:
-        if target.resolve() in resolved or (
-            target.exists() and any(p.exists() and os.path.samefile(target, p) for p in inputs)
-        ):
-            raise UsageError(f"refusing to overwrite the input {target}; choose another -o")
-        if target.is_dir():
-            raise UsageError(f"{target} is a directory")
-        if target.exists() and not force:
-            existing.append(target)
-    if existing:
-        more = f" (and {len(existing) - 1} more)" if len(existing) > 1 else ""
-        raise UsageError(f"{existing[0]} exists{more}; add --force to overwrite")
-    return SheetPlan(sheet, out, tuple(formats), chosen, targets)
+        check_output_path(target)
+    inputs = (sheet.path, *(p.path for p in sheet.problems), *([students] if students else []))
+    check_existing(out, inputs, force=force)
+    return SheetPlan(sheet, out, tuple(formats), chosen, targets, force, inputs)
+
+
+def check_names(names: Sequence[str]) -> None:
+    """Refuse (UsageError) a set of relative output paths that some file system cannot hold as
+    distinct files: see the module's docstring."""
+    from tutgen.api import NAME_MAX
+
+    files: dict[str, str] = {}
+    dirs: dict[str, str] = {}
+    for name in names:
+        parts = name.split("/")
+        for part in parts:
+            stem = part.split(".")[0].casefold()
+            if stem in WINDOWS_DEVICES:
+                raise UsageError(f"the output file {name} is named after the Windows device '{part}'; rename it")
+            if part.endswith((".", " ")) or not part:
+                raise UsageError(f"the output file {name} has a name ending in a dot or a space; rename it")
+            if len(os.fsencode(part)) > NAME_MAX:
+                raise UsageError(f"the output file {name[:60]}… has a name longer than {NAME_MAX} bytes")
+        for i in range(1, len(parts)):
+            folded = "/".join(parts[:i]).casefold()
+            dirs.setdefault(folded, "/".join(parts[:i]))
+        folded = name.casefold()
+        if folded in files:
+            other = files[folded]
+            why = "twice" if other == name else f"as {other} and {name}, the same file where case does not count"
+            raise UsageError(f"the sheet would write one file {why}; rename one of them")
+        files[folded] = name
+    for folded, name in files.items():
+        if folded in dirs:
+            raise UsageError(
+                f"the sheet would write {name} as a file and as the directory of {dirs[folded]}/…; rename one of them"
+            )
+
+
+def check_existing(out: Path, inputs: Sequence[Path], *, force: bool) -> None:
+    """An existing -o may be replaced (with --force) only if nothing in it is an input or not a sheet's."""
+    if not out.exists():
+        return
+    real = Path(os.path.realpath(out))
+    for path in inputs:
+        rp = Path(os.path.realpath(path))
+        if rp == real or real in rp.parents:
+            raise UsageError(f"refusing to write a sheet over {out}: the input {path} is inside it; choose another -o")
+    try:
+        entries = sorted(os.listdir(out))
+    except OSError as err:
+        raise UsageError(f"-o {out}: cannot read it: {err.strerror or err}") from None
+    if not entries:
+        return
+    if not force:
+        raise UsageError(f"{out} exists and is not empty; add --force to replace it with the new sheet")
+    foreign = [e for e in entries if not _OUTPUT_ENTRY.fullmatch(e)]
+    if foreign:
+        more = f" (and {len(foreign) - 1} more)" if len(foreign) > 1 else ""
+        raise UsageError(
+            f"refusing to replace {out}: it holds {out / foreign[0]}, which is not part of a sheet's output{more}"
+        )
+
+
+def lock_path(out: Path) -> Path:
+    """The lock file of an output directory: beside it, named after it."""
+    real = Path(os.path.realpath(out))
+    return real.parent / f".{real.name}.tutgen-lock"
+
+
+@contextlib.contextmanager
+def output_lock(out: Path) -> Iterator[None]:
+    """Hold the lock of ``out`` for the block; UsageError if another run holds it.
+
+    ``flock`` is released by the kernel when the holder exits, however it exits, so a killed run
+    leaves no stale lock (at most the empty file, which the next run takes and removes). The file is
+    removed on the way out; a run that opened it just before is told by the inode check and retries.
+    """
+    path = lock_path(out)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise UsageError(f"-o {out}: cannot create its parent directory: {err.strerror or err}") from None
+    for _ in range(20):
+        try:
+            fd = os.open(path, os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0), 0o644)
+        except OSError as err:
+            raise UsageError(f"-o {out}: cannot create the lock file {path}: {err.strerror or err}") from None
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError as err:
+            holder = _read_pid(fd)
+            os.close(fd)
+            if err.errno in (errno.EAGAIN, errno.EACCES, errno.EWOULDBLOCK):
+                who = f" (process {holder})" if holder else ""
+                raise UsageError(
+                    f"-o {out}: another tutgen run is writing it{who}; wait for it to finish or choose another -o"
+                ) from None
+            raise UsageError(f"-o {out}: cannot lock {path}: {err.strerror or err}") from None
+        try:
+            same = os.fstat(fd).st_ino == os.stat(path, follow_symlinks=False).st_ino
+        except OSError:
+            same = False
+        if same:
+            break
+        os.close(fd)  # the holder removed it as we opened it: take the new one
+    else:  # pragma: no cover - twenty races in a row
+        raise UsageError(f"-o {out}: cannot take the lock {path}")
+    try:
+        os.ftruncate(fd, 0)
+        os.write(fd, f"{os.getpid()}\n".encode())
+        yield
+    finally:
+        from tutgen.limits import shielded
+
+        with shielded():
+            with contextlib.suppress(OSError):
+                os.unlink(path)
+            os.close(fd)
+
+
+def _read_pid(fd: int) -> str:
+    try:
+        text = os.pread(fd, 32, 0).decode("ascii", errors="replace").strip()
+    except OSError:
+        return ""
+    return text if text.isdigit() else ""
+
+
+def write_tree(plan: SheetPlan, files: Sequence[tuple[str, str | bytes]]) -> None:
+    """Write every file into a temporary directory beside -o, then put it in -o's place (replacing an
+    existing output, which :func:`plan_sheet` allowed); on any error or interruption the temporary
+    directory is removed and -o is as it was."""
+    from tutgen.limits import shielded
+
+    out = Path(os.path.realpath(plan.out))
+    umask = os.umask(0)
+    os.umask(umask)
+    try:
+        out.parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent))
+    except OSError as err:
+        raise UsageError(f"cannot write {plan.out}: {err.strerror or err}") from None
+    current = ""
+    try:
+        os.chmod(tmp, 0o777 & ~umask)  # mkdtemp makes it private; the output is an ordinary directory
+        for name, content in files:
+            current = name
+            path = tmp / name
+            path.parent.mkdir(parents=True, exist_ok=True)
+            if isinstance(content, bytes):
+                path.write_bytes(content)
+            else:
+                with open(path, "w", encoding="utf-8", newline="\n") as fh:
+                    fh.write(content)
+        current = ""
+        with shielded():  # the swap is two renames: nothing may stop it between them
+            check_existing(plan.out, plan.inputs, force=plan.force)  # as planned, still
+            _swap(tmp, out)
+    except BaseException as err:
+        with shielded():
+            shutil.rmtree(tmp, ignore_errors=True)
+        if isinstance(err, OSError):
+            where = plan.out / current if current else plan.out
+            raise UsageError(f"cannot write {where}: {err.strerror or err}; nothing was written") from None
+        raise
+
+
+def _swap(new: Path, out: Path) -> None:
+    """``new`` becomes ``out``; an existing ``out`` is moved aside first and removed after."""
+    if not os.path.lexists(out):
+        os.rename(new, out)
+        return
+    old = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".old", dir=out.parent))
+    os.rename(out, old)  # replaces the empty directory just made
+    try:
+        os.rename(new, out)
+    except OSError:
+        os.rename(old, out)  # put the old output back
+        raise
+    shutil.rmtree(old, ignore_errors=True)
 
 
 def run_sheet(
@@ -97,31 +297,40 @@ def run_sheet(
     method: str = "lagrange",
     on_done: Callable[[], None] | None = None,
 ) -> str:
-    """Derive, build every sheet (in the executor), then write every file; returns a one-line report."""
-    from tutgen.api import write_outputs
-    from tutgen.sheet.build import build_sheet, derive_problems
-    from tutgen.sheet.executor import make_executor
+    """Derive, build every sheet (in the executor), then write every file; returns a one-line report.
 
-    derivations, derive_seconds = derive_problems(plan.sheet, method, timeout)
-    executor = make_executor(workers, scheduler)
-    try:
-        build = build_sheet(
-            plan.sheet,
-            formats=plan.formats,
-            variants=plan.variants,
-            seed=seed,
-            executor=executor,
-            derivations=derivations,
-            method=method,
-            on_done=on_done,
-        )
-    finally:
-        close = getattr(executor, "close", None)
-        if close:
-            close()
-    names = [plan.out / name for name, _ in build.files]
-    assert names == list(plan.targets), "the build made other files than planned"
-    write_outputs(names, [content for _, content in build.files])
+    Deriving and building run within ``timeout`` seconds (one budget; inside an outer deadline, that
+    one's); the whole run holds the output's lock."""
+    from tutgen.limits import deadline, stage
+    from tutgen.sheet.build import build_sheet, derive_problems
+    from tutgen.sheet.executor import check_scheduler_address, make_executor
+
+    if scheduler:
+        check_scheduler_address(scheduler)
+    with output_lock(plan.out):
+        with deadline(timeout):
+            derivations, derive_seconds = derive_problems(plan.sheet, method, timeout)
+            stage("rendering", "the sheets")
+            executor = make_executor(workers, scheduler)
+            try:
+                build = build_sheet(
+                    plan.sheet,
+                    formats=plan.formats,
+                    variants=plan.variants,
+                    seed=seed,
+                    executor=executor,
+                    derivations=derivations,
+                    method=method,
+                    on_done=on_done,
+                )
+            finally:
+                close = getattr(executor, "close", None)
+                if close:
+                    close()
+        names = [plan.out / name for name, _ in build.files]
+        assert names == list(plan.targets), "the build made other files than planned"
+        stage("writing", str(plan.out))
+        write_tree(plan, build.files)
     variants = f", {len(plan.variants)} variants" if plan.variants else ""
     return (
         f"wrote {len(names)} files to {plan.out}{variants} "
