@@ -38,7 +38,7 @@ from tutgen.engine.remarks import REMARK_CONSTANT_MASS_MATRIX, degeneracy_remark
 from tutgen.engine.serial import REMARK_FAST_PATH, is_large_serial_chain, serial_checks, serial_dynamics
 from tutgen.engine.tidy import tidy
 from tutgen.errors import DerivationError, DerivationTimeout
-from tutgen.limits import DEFAULT_TIMEOUT, checkpoint, deadline
+from tutgen.limits import DEFAULT_TIMEOUT, checkpoint, deadline, stage
 from tutgen.model.system import System
 
 __all__ = ["METHODS", "derive", "derive_with_deadline"]
