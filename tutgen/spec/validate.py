@@ -38,7 +38,10 @@ from tutgen.model.system import (
 )
 from tutgen.spec import schema as S
 from tutgen.spec.expr import FUNCTIONS, ExprError, number_to_rational, parse_expression
+from tutgen.spec.latexname import display_name  # issue 14: `latex:` whitelist, default display names
 from tutgen.spec.loader import KeyPath, SourceMap, load_yaml_file, load_yaml_text
+from tutgen.spec.names import default_latex
+from tutgen.spec.richtext import read_texts, with_texts  # issue 14: $…$ maths in texts
 from tutgen.spec.units import DIMENSIONS, Dimension, DimensionMismatch, dimension_of, parse_quantity, parse_unit
 
 RESERVED_NAMES = frozenset({GROUND, "pi", "t", *FUNCTIONS})
@@ -630,6 +633,9 @@ class _Builder:
         gforces = self.build_generalized_forces()
         kinetic, potential = self.build_energy()
         self.check_explicit_placement()
+        # texts last: their maths may use every parameter and coordinate (tutgen.spec.richtext)
+        texts, text_errors = read_texts(self.data, self.smap, self.symbols(coords=True, rates=True, accel=True))
+        self.errors += text_errors
         if self.errors:
             raise SpecErrors(self.errors)
         ask = self.build_ask(bool(self.coords))
@@ -639,7 +645,7 @@ class _Builder:
             dataclasses.replace(j, coordinate=coords[j.coordinate.name]) if j.coordinate is not None else j
             for j in joints
         ]
-        return System(
+        system = System(
             title=doc.title.strip(),
             statement=doc.statement.strip() if doc.statement else None,
             source=self.smap.path,
@@ -656,7 +662,9 @@ class _Builder:
             potential_energy=potential,
             ask=ask,
             origin=self.smap.location(()),
+            significant_figures=doc.significant_figures,
         )
+        return with_texts(system, texts)
 
     def build_parameters(self) -> None:
         self.parameters: list[Parameter] = []
@@ -724,7 +732,8 @@ class _Builder:
                 symbol = sp.Symbol(name, real=True)
                 self.params[name] = symbol
                 self.dims[symbol] = dims
-            latex = spec.latex if spec.latex is not None else sp.latex(symbol)
+            latex, latex_errors = display_name(name, spec.latex, self.smap, (*path, "latex"))
+            self.errors += latex_errors
             where = self.smap.key_location(path)
             self.parameters.append(
                 Parameter(name, symbol, value, latex, spec.description, unit, where, self.dims.get(symbol), choices)
@@ -814,7 +823,9 @@ class _Builder:
             if name in self.params:
                 # declared anyway (as a coordinate), so that its uses are not reported too
                 self.error(path, f"'{name}' is declared both as a parameter and as a coordinate", key=True)
-            self.coords[name] = self._coordinate(name, spec.latex, spec.description, spec.dimension)
+            latex, latex_errors = display_name(name, spec.latex, self.smap, (*path, "latex"))
+            self.errors += latex_errors
+            self.coords[name] = self._coordinate(name, latex, spec.description, spec.dimension)
             if spec.dimension == "length":
                 self.dims[self.coords[name].q] = DIMENSIONS["length"]
             elif spec.dimension == "angle":
@@ -829,7 +840,7 @@ class _Builder:
             q,
             qd,
             qdd,
-            latex if latex is not None else sp.latex(q),
+            latex if latex is not None else default_latex(name),
             description,
             dimension,
             self.smap.key_location(self.name_path("coordinates", name)),
@@ -1671,7 +1682,7 @@ class _Builder:
         spec = self.doc.energy
         # keys set aside for shape errors (or unknown ones, perhaps a misspelt `bodies`) may be what
         # is missing here: guess nothing about them
-        unsure = bool(self.dropped_keys - {"tutgen", "title", "statement", "gravity", "ask"})
+        unsure = bool(self.dropped_keys - {"tutgen", "title", "statement", "gravity", "ask", "significant_figures"})
         has_bodies = bool(self.doc.bodies or self.doc.joints or self.body_names or self.doc.arm)
         has_bodies |= bool(self.dropped_names("joints"))
         if spec is None:
