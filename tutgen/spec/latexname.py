@@ -7,7 +7,8 @@ Markdown's maths), so it cannot be escaped there. Instead it must be made of
 - ``_`` and ``^``, each followed by its argument (a letter, a digit, a command or a ``{…}`` group) and
   at most one of each per symbol (TeX stops at "Double subscript");
 - braces ``{ }``, balanced;
-- the commands of :data:`SYMBOL_COMMANDS` (Greek letters, ``\\ell``, ``\\prime``, ...) and of
+- ``\\_`` (an underscore shown as one), the commands of :data:`SYMBOL_COMMANDS` (Greek letters,
+  ``\\ell``, ``\\prime``, ...) and of
   :data:`ARGUMENT_COMMANDS` (accents and alphabets, each followed by its argument: ``\\dot{x}``,
   ``\\mathrm{max}``).
 
@@ -77,7 +78,7 @@ def allowed_summary() -> str:
     accents = ", ".join(f"\\{c}" for c in sorted(ARGUMENT_COMMANDS))
     return (
         "a latex: name may use letters, digits, spaces, _ ^ { } ' , and the commands: the Greek letters "
-        f"(\\alpha ... \\omega, \\Gamma ... \\Omega, \\varphi ...), \\ell, \\prime, \\partial, \\hbar, \\ast, "
+        f"(\\alpha ... \\omega, \\Gamma ... \\Omega, \\varphi ...), \\ell, \\prime, \\partial, \\hbar, \\ast, \\_, "
         f"and with an argument {accents}"
     )
 
@@ -182,6 +183,11 @@ class _Checker:
             end += 1
         name = text[self.pos : end]
         if not name:
+            if text.startswith("_", self.pos):  # \_, an underscore shown as one (tutgen's rule prints a__b so)
+                self.pos += 1
+                if not in_script:
+                    self.scripts[-1] = set()
+                return
             shown = "\\" + text[self.pos] if self.pos < len(text) else "\\"
             raise LatexNameError(f"'{shown}' is not allowed in a display name", start)
         self.pos = end
