@@ -159,9 +159,7 @@ def test_every_text_of_a_spec_is_rich_text_in_the_model() -> None:
         pytest.param("length}", "length $x}", (8, 27), "unclosed '$'", id="unclosed-description"),
     ],
 )
-def test_a_bad_span_is_a_spec_error_pointing_into_it(
-    old: str, new: str, where: tuple[int, int], message: str
-) -> None:
+def test_a_bad_span_is_a_spec_error_pointing_into_it(old: str, new: str, where: tuple[int, int], message: str) -> None:
     assert old in SPEC
     with pytest.raises(SpecErrors) as info:
         load_system_text(SPEC.replace(old, new), "rich.yaml")
