@@ -9,7 +9,7 @@ import sympy as sp
 
 from tutgen.errors import SpecErrors
 from tutgen.model.text import MathSpan, RichText
-from tutgen.spec.richtext import MAX_SPANS, RichTextError, parse_rich_text
+from tutgen.spec.richtext import MAX_MATHS, MAX_SPANS, RichTextError, parse_rich_text
 from tutgen.spec.validate import load_system_text
 
 theta1, theta2 = sp.symbols("theta1 theta2", real=True)
@@ -118,6 +118,18 @@ def test_the_number_of_spans_is_limited() -> None:
     parse_rich_text("$m$ " * MAX_SPANS, NAMES)
     with pytest.raises(RichTextError, match="more than"):
         parse_rich_text("$m$ " * (MAX_SPANS + 1), NAMES)
+
+
+def test_the_maths_of_all_texts_of_a_spec_is_limited() -> None:
+    long = "$" + "+".join(["m"] * 999) + "$"  # 1997 characters of maths
+    count = MAX_MATHS // (len(long) - 2) + 1
+    descriptions = "".join(f"  p{i}: {{description: '{long}'}}\n" for i in range(count))
+    with pytest.raises(SpecErrors) as info:
+        load_system_text(f"title: t\nparameters:\n{descriptions}", "long.yaml")
+    (error,) = info.value.errors
+    assert error.message == f"the texts hold more than {MAX_MATHS} characters of maths"
+    # at the opening dollar of the span that crosses the limit, in the last description
+    assert (error.location.line, error.location.col) == (count + 2, len(f"  p{count - 1}: {{description: '") + 1)
 
 
 SPEC = """\

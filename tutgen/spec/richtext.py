@@ -55,10 +55,13 @@ from tutgen.model.text import MathSpan, RichText
 from tutgen.spec.expr import CONSTANTS, FUNCTIONS, MAX_LENGTH, ExprError, _Parser
 from tutgen.spec.loader import KeyPath, SourceMap
 
-__all__ = ["MAX_SPANS", "RichTextError", "parse_rich_text", "read_texts", "with_texts"]
+__all__ = ["MAX_MATHS", "MAX_SPANS", "RichTextError", "parse_rich_text", "read_texts", "with_texts"]
 
 #: Most ``$…$`` spans one text may hold (each one is a parse).
 MAX_SPANS = 200
+#: Most characters of maths (between the dollars) in all the texts of one spec together: prose maths
+#: is short, and sympy builds about 15 000 characters of it a second on a busy machine.
+MAX_MATHS = 20_000
 #: The relations a span may chain expressions with; the two-character ones first.
 _RELATION_RE = re.compile(r"<=|>=|!=|=|<|>")
 _ESCAPE_HINT = "write \\$ for a dollar sign"
@@ -109,7 +112,11 @@ class _ProseNames(Mapping[str, sp.Expr]):
 
 
 class _ProseParser(_Parser):
-    """The whitelist parser, reading a product written without ``*`` as in print (``2 m l``)."""
+    """The whitelist parser, reading a product written without ``*`` as in print (``2 m l``).
+
+    It extends the parser of :mod:`tutgen.spec.expr` by these two methods only, so that the grammar,
+    the limits and the messages stay those of a spec's expressions (tests/spec/test_richtext.py
+    checks both): keep them in step if that parser's ``_product`` or ``_name`` change."""
 
     def _product(self, depth: int) -> sp.Expr:
         left = self._unary(depth)
@@ -189,11 +196,12 @@ def _span(source: str, names: _ProseNames, offset: int) -> MathSpan:
     return MathSpan(source, tuple(terms), tuple(relations))
 
 
-def parse_rich_text(text: str, names: Mapping[str, sp.Expr]) -> RichText:
+def parse_rich_text(text: str, names: Mapping[str, sp.Expr], max_maths: int = MAX_MATHS) -> RichText:
     """Read the ``$…$`` spans of ``text`` (see the module docstring) into a :class:`RichText`.
 
-    ``names`` are the declared names (parameters, coordinates, rates) and their symbols. Raises
-    :class:`RichTextError` with the 0-based offset into ``text`` of the problem.
+    ``names`` are the declared names (parameters, coordinates, rates) and their symbols; the spans
+    may hold ``max_maths`` characters of maths in all. Raises :class:`RichTextError` with the 0-based
+    offset into ``text`` of the problem.
     """
     prose = _ProseNames(names)
     parts: list[str | MathSpan] = []
@@ -222,6 +230,11 @@ def parse_rich_text(text: str, names: Mapping[str, sp.Expr]) -> RichText:
         spans += 1
         if spans > MAX_SPANS:
             raise RichTextError(f"the text has more than {MAX_SPANS} maths spans", i)
+        max_maths -= len(source)
+        if max_maths < 0:
+            raise RichTextError(
+                f"the texts hold more than {MAX_MATHS} characters of maths", i, "keep the maths of a text short"
+            )
         if plain:
             parts.append("".join(plain))
             plain = []
@@ -267,13 +280,18 @@ def read_texts(
     """
     texts: dict[KeyPath, RichText] = {}
     errors: list[SpecError] = []
+    budget = MAX_MATHS  # for all the texts together
     for path, raw, strip in _text_paths(data):
         lead = len(raw) - len(raw.lstrip()) if strip else 0
         text = raw.strip() if strip else raw
         try:
-            texts[path] = parse_rich_text(text, names)
+            texts[path] = parse_rich_text(text, names, budget)
         except RichTextError as exc:
             errors.append(SpecError(smap.expr_location(path, lead + exc.offset), exc.message, exc.hint))
+            if exc.message.startswith("the texts hold more than"):
+                break
+            continue
+        budget -= sum(len(part.source) for part in texts[path].parts if isinstance(part, MathSpan))
     return texts, errors
 
 
