@@ -81,7 +81,7 @@ def test_escaped_dollars_are_text() -> None:
 
 
 def test_rich_text_pickles_with_its_parts() -> None:
-    text = parse_rich_text("the mass $m$", NAMES)
+    text = parse_rich_text("the mass $m$ in $H(q) q_ddot = tau$", NAMES)  # sheet workers pickle systems
     again = pickle.loads(pickle.dumps(text))
     assert again == text and again.parts == text.parts
 
