@@ -3,7 +3,7 @@
 sympy's own rule (``sp.latex(Symbol("Ixx1"))`` is ``Ixx_{1}``) prints a name of several letters as a
 product of letters. A reader of a mechanics text expects one letter with subscripts, and Greek names as
 Greek letters. The rule, applied to the parts of the name between underscores (docs/spec-format.md,
-"Names"):
+"Display names"):
 
 1. The first part is the symbol: a Greek letter's name (``theta``, ``Omega``, ``varphi``) is that
    letter; one letter is itself; a Greek name followed by one or two letters is the Greek letter with
