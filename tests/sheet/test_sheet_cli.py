@@ -76,7 +76,7 @@ def test_sheet_questions_and_solutions_show_the_variants_numbers(small: tuple[Pa
         vid, _, m1, length, _, _ = row.split(",")
         number, unit = m1.split()
         questions = (out / "variants" / vid / "questions.md").read_text()
-        assert f"$m_{{1}} = {number}\\ \\mathrm{{{unit}}}$ (mass of the cart)" in questions
+        assert f"$m_1 = {number}\\ \\mathrm{{{unit}}}$ (mass of the cart)" in questions
         assert f"$l = {length.split()[0]}\\ \\mathrm{{m}}$" in questions
         assert questions.count("## Problem ") == 3 and "## Problem 3. Inertia matrix" in questions
         assert f"*Variant {int(vid[1:])}*" in questions and "**ME4245** · 2 February 2026" in questions

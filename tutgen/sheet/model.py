@@ -36,6 +36,7 @@ from tutgen.errors import Location, SpecError, SpecErrors
 from tutgen.model.system import System
 from tutgen.spec.expr import did_you_mean
 from tutgen.spec.loader import SourceMap, load_yaml_file, load_yaml_text
+from tutgen.spec.richtext import RichTextError, parse_rich_text
 
 SHEET_FORMAT_VERSION = 1
 SHEET_KEYS = ("tutgen_sheet", "title", "course", "date", "problems")
@@ -107,7 +108,14 @@ def _text_field(data: dict[str, Any], smap: SourceMap, key: str, errors: list[Sp
     if isinstance(value, bool) or not isinstance(value, (str, int, float)):
         errors.append(_error(smap, (key,), f"'{key}' must be a text"))
         return ""
-    return str(value).strip()
+    # issue 14: $…$ maths in a sheet's texts, read as a spec's texts are (no declared names: all free)
+    text = str(value)
+    lead = len(text) - len(text.lstrip())
+    try:
+        return parse_rich_text(text.strip(), {})
+    except RichTextError as exc:
+        errors.append(SpecError(smap.expr_location((key,), lead + exc.offset), exc.message, exc.hint))
+        return ""
 
 
 def load_sheet(path: str | Path) -> Sheet:

@@ -167,6 +167,46 @@ def _line_col(text: str, index: int) -> tuple[int, int]:
     return line, index - start + 1
 
 
+def _multiline_index(text: str, style: str | None, start: int, stop: int, value: str, offset: int) -> int | None:
+    """Where in ``text`` the character at ``offset`` of a scalar written over several lines is.
+
+    The scalar's characters other than spaces, tabs and line breaks are found in the text in order,
+    with nothing but indentation and line breaks between them (a block scalar's header line is skipped).
+    A space of the value is placed just after the character before it. None when the text does not
+    read that way (escapes, doubled quotes) or ``offset`` is outside the value.
+    """
+    if not 0 <= offset <= len(value):
+        return None
+    i = start
+    while i < stop and text[i] in "!&":  # a tag or an anchor starts the node's mark
+        while i < stop and text[i] not in " \t":
+            i += 1
+        while i < stop and text[i] in " \t":
+            i += 1
+    if style in ("|", ">"):
+        breaks = _BREAK_RE.search(text, i, stop)
+        if breaks is None:
+            return None
+        i = breaks.end()
+    elif style in ("'", '"'):
+        if style == '"' and "\\" in text[i:stop]:
+            return None
+        i += 1
+    position = i
+    for index, char in enumerate(value[: offset + 1]):
+        if char in " \t\n":
+            if index == offset:
+                return position
+            continue
+        found = text.find(char, position, stop)
+        if found < 0 or text[position:found].strip(" \t\r\n\x85\u2028\u2029"):
+            return None
+        if index == offset:
+            return found
+        position = found + 1
+    return position
+
+
 def _too_big(path: str) -> SpecError:
     return SpecError(
         Location(path),
@@ -200,6 +240,10 @@ class _Entry(NamedTuple):
     #: column of the scalar's first character when offsets inside it map exactly to columns, else None
     expr_col: int | None
     expr_len: int
+    #: a scalar written over several lines (a block ``|``/``>``, or a folded plain or quoted scalar):
+    #: its style, where it starts and ends in the text, and its value, so that an offset into the
+    #: value can be found in the text (see :meth:`SourceMap.expr_location`); None otherwise
+    multiline: tuple[str | None, int, int, str] | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -212,6 +256,8 @@ class SourceMap:
 
     path: str
     _entries: Mapping[KeyPath, _Entry] = field(default_factory=dict, repr=False)
+    #: the text the spec was loaded from (to find offsets inside scalars written over several lines)
+    _text: str = field(default="", repr=False)
 
     def _find(self, keypath: KeyPath) -> _Entry | None:
         """The entry at ``keypath``, or at its nearest existing ancestor other than the root."""
@@ -248,10 +294,16 @@ class SourceMap:
         """Where the character at 0-based ``offset`` of the string at ``keypath`` was written.
 
         Exact for a scalar written on one line whose text is its value: a plain scalar, or a quoted one
-        without escapes (``\\n``) or doubled quotes (``''``). Otherwise (and for an offset outside the
-        string) this is :meth:`location` of ``keypath``.
+        without escapes (``\\n``) or doubled quotes (``''``); and for a scalar written over several
+        lines (a block ``|`` or ``>``, a plain or quoted scalar folded over lines) whose characters
+        other than spaces and line breaks are written as they are. Otherwise (and for an offset outside
+        the string) this is :meth:`location` of ``keypath``.
         """
         entry = self._entries.get(tuple(keypath))
+        if entry is not None and entry.multiline is not None and self._text:
+            found = _multiline_index(self._text, *entry.multiline, offset)
+            if found is not None:
+                return Location(self.path, *_line_col(self._text, found))
         if entry is None or entry.expr_col is None or not 0 <= offset <= entry.expr_len:
             return self.location(keypath)
         return Location(self.path, entry.line, entry.expr_col + offset)
@@ -492,11 +544,14 @@ class _Builder:
         if alias_mark is not None:  # the value is where the alias was written; offsets do not map
             return _Entry(alias_mark.line + 1, alias_mark.column + 1, key_line, key_col, None, 0)
         start = node.start_mark
+        multiline = None
         if isinstance(node, ScalarNode):
             expr_col, expr_len = self._expr_column(node), len(node.value)
+            if start.line != node.end_mark.line:
+                multiline = (node.style, start.index, node.end_mark.index, node.value)
         else:
             expr_col, expr_len = None, 0
-        return _Entry(start.line + 1, start.column + 1, key_line, key_col, expr_col, expr_len)
+        return _Entry(start.line + 1, start.column + 1, key_line, key_col, expr_col, expr_len, multiline)
 
     def _expr_column(self, node: ScalarNode) -> int | None:
         """1-based column of the scalar's first character, if every character sits where its offset says."""
@@ -723,7 +778,7 @@ def load_yaml_text(text: str, path: str) -> tuple[Any, SourceMap]:
         raise SpecErrors(errors)
     if data is None:  # "---" alone, or "~": nothing to locate either
         return None, SourceMap(path)
-    return data, SourceMap(path, MappingProxyType(builder.entries))
+    return data, SourceMap(path, MappingProxyType(builder.entries), text)
 
 
 def load_yaml_file(path: str | Path) -> tuple[Any, SourceMap]:

@@ -58,6 +58,21 @@ def _vector3(value: Any) -> Any:
     return value
 
 
+#: The range of ``significant_figures``: beyond 15 a double has no more digits to show.
+SIGNIFICANT_FIGURES_RANGE = (1, 15)
+
+
+def _significant_figures(value: Any) -> Any:
+    lo, hi = SIGNIFICANT_FIGURES_RANGE
+    if isinstance(value, bool) or not isinstance(value, int) or not lo <= value <= hi:
+        raise PydanticCustomError(
+            "tutgen_figures",
+            f"expected a whole number from {lo} to {hi}, found {{found}}",
+            {"found": describe(value)},
+        )
+    return value
+
+
 def _text(value: Any) -> Any:
     if not isinstance(value, str):
         raise PydanticCustomError("tutgen_text", "expected a text, found {found}", {"found": describe(value)})
@@ -72,7 +87,9 @@ _EXPR_SCHEMA = {
 
 #: An expression in the spec grammar, a number, or a number with a unit.
 Expr = Annotated[Any, BeforeValidator(_expr_scalar), WithJsonSchema(_EXPR_SCHEMA)]
-#: A text shown to the reader (titles, statements, descriptions).
+#: A text shown to the reader (titles, statements, descriptions). It may hold inline maths between
+#: dollars in the expression grammar (``$T = m v^2/2$``; ``\$`` is a dollar sign): validation reads it
+#: into a :class:`tutgen.model.text.RichText` (tutgen.spec.richtext).
 Text = Annotated[str, BeforeValidator(_text)]
 #: Three components [x, y, z], each an expression.
 Vector3 = Annotated[
@@ -154,8 +171,15 @@ class ParameterSpec(SpecModel):
     value: Expr | None = Field(
         None, description="A number, or a number with a unit ('15 cm'); omitted: the parameter stays symbolic."
     )
-    latex: Text | None = Field(None, description="How to typeset the name, e.g. '\\tau_1' (default: from the name).")
-    description: Text | None = Field(None, description="What the parameter is, for the reader.")
+    latex: Text | None = Field(
+        None,
+        description="How to typeset the name, e.g. '\\tau_1': letters, digits, _ ^ { } ' , spaces, Greek "
+        "letters and a few commands (\\dot, \\hat, \\mathrm, ...), never raw TeX (default: from the name, "
+        "Ixx1 as I_{xx,1}).",
+    )
+    description: Text | None = Field(
+        None, description="What the parameter is, for the reader; may hold maths between dollars ($m_1 g$)."
+    )
     dimension: DimensionName | None = Field(
         None, description="The physical dimension; a value whose unit has another dimension is an error."
     )
@@ -194,8 +218,12 @@ def _parameters(value: Any) -> Any:
 class CoordinateSpec(SpecModel):
     """A generalized coordinate q_i. Its velocity is written NAME_dot and its acceleration NAME_ddot."""
 
-    latex: Text | None = Field(None, description="How to typeset the name, e.g. '\\theta_1'.")
-    description: Text | None = Field(None, description="What the coordinate measures, for the reader.")
+    latex: Text | None = Field(
+        None, description="How to typeset the name, e.g. '\\theta_1' (the same whitelist as a parameter's)."
+    )
+    description: Text | None = Field(
+        None, description="What the coordinate measures, for the reader; may hold maths between dollars."
+    )
     dimension: Literal["length", "angle"] | None = Field(
         None, description="'length' or 'angle'; inferred from the joint that uses it when omitted."
     )
@@ -559,8 +587,18 @@ class SpecDoc(SpecModel):
     """A tutgen spec: one mechanics problem."""
 
     tutgen: Literal[1] | None = Field(None, description="The spec format version (1).")
-    title: Text = Field(description="The problem's title.")
-    statement: Text | None = Field(None, description="The problem statement, shown in the worked solution.")
+    title: Text = Field(description="The problem's title; may hold maths between dollars.")
+    statement: Text | None = Field(
+        None,
+        description="The problem statement, shown in the worked solution; may hold maths between dollars "
+        "in the expression grammar ($T = m v^2/2$), and \\$ for a dollar sign.",
+    )
+    significant_figures: Annotated[int, BeforeValidator(_significant_figures)] | None = Field(
+        None,
+        description="How many significant figures decimals are printed with, a whole number from 1 to 15 "
+        "(default: the renderer's, 4).",
+        json_schema_extra={"minimum": SIGNIFICANT_FIGURES_RANGE[0], "maximum": SIGNIFICANT_FIGURES_RANGE[1]},
+    )
     parameters: Annotated[dict[Name, ParameterSpec], BeforeValidator(_parameters)] = Field(
         default_factory=dict,
         description="Named quantities: `m1:` (symbolic), `rho: 7849 kg/m^3` (numeric), or a list of names.",

@@ -9,6 +9,8 @@ import sympy as sp
 from tutgen.model.system import Coordinate
 from tutgen.spec.builders.context import Context
 from tutgen.spec.expr import FUNCTIONS
+from tutgen.spec.latexname import display_name
+from tutgen.spec.names import default_latex
 from tutgen.spec.units import DIMENSIONS
 
 #: The most coordinates a spec may have: tutgen derives symbolic equations, which grow fast with n.
@@ -38,7 +40,9 @@ def build_coordinates(ctx: Context) -> None:
         if name in ctx.params:
             # declared anyway (as a coordinate), so that its uses are not reported too
             ctx.error(path, f"'{name}' is declared both as a parameter and as a coordinate", key=True)
-        ctx.coords[name] = _coordinate(ctx, name, spec.latex, spec.description, spec.dimension)
+        latex, latex_errors = display_name(name, spec.latex, ctx.smap, (*path, "latex"))
+        ctx.errors += latex_errors
+        ctx.coords[name] = _coordinate(ctx, name, latex, spec.description, spec.dimension)
         if spec.dimension == "length":
             ctx.dims[ctx.coords[name].q] = DIMENSIONS["length"]
         elif spec.dimension == "angle":
@@ -56,7 +60,7 @@ def _coordinate(
         q,
         qd,
         qdd,
-        latex if latex is not None else sp.latex(q),
+        latex if latex is not None else default_latex(name),
         description,
         dimension,
         ctx.smap.key_location(ctx.name_path("coordinates", name)),

@@ -11,6 +11,7 @@ from tutgen.spec import schema as S
 from tutgen.spec.builders.context import Context
 from tutgen.spec.builders.words import expected_dimension, found_dimension
 from tutgen.spec.expr import FUNCTIONS, ExprError, number_to_rational
+from tutgen.spec.latexname import display_name
 from tutgen.spec.loader import KeyPath
 from tutgen.spec.units import DIMENSIONS, Dimension, parse_quantity, parse_unit
 
@@ -85,7 +86,8 @@ def build_parameters(ctx: Context) -> list[Parameter]:
             symbol = sp.Symbol(name, real=True)
             ctx.params[name] = symbol
             ctx.dims[symbol] = dims
-        latex = spec.latex if spec.latex is not None else sp.latex(symbol)
+        latex, latex_errors = display_name(name, spec.latex, ctx.smap, (*path, "latex"))
+        ctx.errors += latex_errors
         where = ctx.smap.key_location(path)
         parameters.append(
             Parameter(name, symbol, value, latex, spec.description, unit, where, ctx.dims.get(symbol), choices)

@@ -25,8 +25,9 @@ from tutgen.spec.builders.gravity import build_gravity
 from tutgen.spec.builders.joints import build_joints, check_explicit_placement
 from tutgen.spec.builders.loads import build_generalized_forces, build_loads
 from tutgen.spec.builders.parameters import build_parameters
-from tutgen.spec.builders.texts import build_statement, build_title
+from tutgen.spec.builders.texts import build_statement, build_texts, build_title
 from tutgen.spec.loader import KeyPath, SourceMap
+from tutgen.spec.richtext import with_texts
 
 
 def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped: set[KeyPath]) -> System:
@@ -54,6 +55,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
     generalized_forces = build_generalized_forces(ctx)
     kinetic, potential = build_energy(ctx, body_names)
     check_explicit_placement(ctx, placed)
+    texts = build_texts(ctx)  # last: their maths may use every declared name
     if ctx.errors:
         raise SpecErrors(ctx.errors)
     ask = build_ask(ctx, bool(ctx.coords))
@@ -64,7 +66,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
         dataclasses.replace(j, coordinate=coordinates[j.coordinate.name]) if j.coordinate is not None else j
         for j in arm_joints + tree_joints
     ]
-    return System(
+    system = System(
         title=title,
         statement=statement,
         source=smap.path,
@@ -81,4 +83,6 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
         potential_energy=potential,
         ask=ask,
         origin=smap.location(()),
+        significant_figures=ctx.doc.significant_figures,
     )
+    return with_texts(system, texts)
