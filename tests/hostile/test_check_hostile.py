@@ -21,7 +21,7 @@ from typing import Any
 import pytest
 from typer.testing import CliRunner, Result
 
-import tutgen.engine.lagrange
+import tutgen.engine.pipeline
 from tests.conftest import ROOT, SPECS, solved
 from tutgen.cli.main import app
 from tutgen.errors import EXIT_CHECK_FAILED, EXIT_INVALID_SPEC, EXIT_USAGE
@@ -77,7 +77,7 @@ def cached_derive(monkeypatch: pytest.MonkeyPatch) -> None:
     """Serve ``derive`` from the session cache: the command still loads, validates and marks."""
     for spec in (P05, P01):
         solved(str(spec))
-    monkeypatch.setattr(tutgen.engine.lagrange, "derive", lambda system, *_, **__: solved(system.source)[1])
+    monkeypatch.setattr(tutgen.engine.pipeline, "derive", lambda system, *_, **__: solved(system.source)[1])
 
 
 def children() -> list[int]:

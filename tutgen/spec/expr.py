@@ -292,7 +292,7 @@ def _too_large_message() -> str:
     return f"a number in the expression is too large (more than about {_MAX_NUMBER_DIGITS} digits)"
 
 
-class _Parser:
+class ExpressionParser:
     """One parse of one text: tokens are scanned lazily, so the first error is the leftmost."""
 
     def __init__(self, text: str, symbols: Mapping[str, sp.Expr]) -> None:
@@ -554,4 +554,4 @@ def parse_expression(text: str | int | float, symbols: Mapping[str, sp.Symbol | 
         raise ExprError(f"expected an expression, found {_kind_of(text)}")
     if len(text) > MAX_LENGTH:
         raise ExprError(f"the expression is too long ({len(text)} characters; the limit is {MAX_LENGTH})", MAX_LENGTH)
-    return _Parser(text, symbols).parse()
+    return ExpressionParser(text, symbols).parse()

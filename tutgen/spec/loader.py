@@ -18,7 +18,6 @@ No tag is ever constructed. Scalars are resolved here by the YAML 1.2 core schem
 from __future__ import annotations
 
 import codecs
-import math
 import os
 import re
 from collections.abc import Mapping
@@ -44,6 +43,7 @@ from yaml.reader import Reader, ReaderError
 from yaml.scanner import Scanner
 
 from tutgen.errors import Location, SpecError, SpecErrors
+from tutgen.spec.scalars import core_value
 
 __all__ = [
     "MAX_ALIASES",
@@ -84,46 +84,8 @@ _UNTAGGED = "tutgen:untagged"
 
 _TAG_HINT = "remove the tag; the only tags a spec may use are !!str, !!int, !!float, !!bool, !!null, !!seq, !!map"
 
-# --- YAML 1.2 core schema ---
-
-_NULL_RE = re.compile(r"null|Null|NULL|~|")
-_BOOLS: dict[str, bool] = {
-    "true": True, "True": True, "TRUE": True,
-    "false": False, "False": False, "FALSE": False,
-}  # fmt: skip
-_INT_DEC_RE = re.compile(r"[-+]?[0-9]+")
-_INT_OCT_RE = re.compile(r"0o[0-7]+")
-_INT_HEX_RE = re.compile(r"0x[0-9a-fA-F]+")
-_FLOAT_RE = re.compile(r"[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?")
-_INF_RE = re.compile(r"[-+]?\.(?:inf|Inf|INF)")
-_NAN_RE = re.compile(r"\.(?:nan|NaN|NAN)")
-
 #: Line breaks as PyYAML's reader counts them ("\r\n" is one break).
 _BREAK_RE = re.compile("\r\n|[\r\n\x85\u2028\u2029]")
-
-
-def _core_value(text: str) -> Any:
-    """Resolve an untagged plain scalar by the YAML 1.2 core schema.
-
-    Raises ``ValueError`` for a decimal integer longer than Python's int-to-str digit limit.
-    """
-    if _NULL_RE.fullmatch(text):
-        return None
-    if text in _BOOLS:
-        return _BOOLS[text]
-    if _INT_DEC_RE.fullmatch(text):
-        return int(text, 10)
-    if _INT_OCT_RE.fullmatch(text):
-        return int(text[2:], 8)
-    if _INT_HEX_RE.fullmatch(text):
-        return int(text[2:], 16)
-    if _FLOAT_RE.fullmatch(text):
-        return float(text)
-    if _INF_RE.fullmatch(text):
-        return -math.inf if text.startswith("-") else math.inf
-    if _NAN_RE.fullmatch(text):
-        return math.nan
-    return text
 
 
 # --- helpers ---
@@ -597,7 +559,7 @@ class _Builder:
             if node.style is not None:  # quoted or block: always a string
                 return text
             try:
-                return _core_value(text)
+                return core_value(text)
             except ValueError:
                 self._error(node, f"the integer '{_short(text)}' has too many digits")
                 return text
@@ -610,7 +572,7 @@ class _Builder:
             self._error(node, f"tag '{_show_tag(tag)}' cannot be used on a scalar")
             return text
         try:
-            value = _core_value(text)
+            value = core_value(text)
         except ValueError:
             self._error(node, f"the integer '{_short(text)}' has too many digits")
             return text

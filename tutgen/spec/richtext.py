@@ -52,7 +52,7 @@ import sympy as sp
 from tutgen.errors import SpecError
 from tutgen.model.system import System
 from tutgen.model.text import MathSpan, RichText
-from tutgen.spec.expr import CONSTANTS, FUNCTIONS, MAX_LENGTH, ExprError, _Parser
+from tutgen.spec.expr import CONSTANTS, FUNCTIONS, MAX_LENGTH, ExprError, ExpressionParser
 from tutgen.spec.loader import KeyPath, SourceMap
 
 __all__ = ["MAX_MATHS", "MAX_SPANS", "RichTextError", "parse_rich_text", "read_texts", "with_texts"]
@@ -111,7 +111,7 @@ class _ProseNames(Mapping[str, sp.Expr]):
         return len(self.declared)
 
 
-class _ProseParser(_Parser):
+class _ProseParser(ExpressionParser):
     """The whitelist parser, reading a product written without ``*`` as in print (``2 m l``).
 
     It extends the parser of :mod:`tutgen.spec.expr` by these two methods only, so that the grammar,
