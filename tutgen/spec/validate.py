@@ -38,6 +38,7 @@ from tutgen.model.system import (
 )
 from tutgen.spec import schema as S
 from tutgen.spec.expr import FUNCTIONS, ExprError, number_to_rational, parse_expression
+from tutgen.spec.figure import validate_figure
 from tutgen.spec.loader import KeyPath, SourceMap, load_yaml_file, load_yaml_text
 from tutgen.spec.units import DIMENSIONS, Dimension, DimensionMismatch, dimension_of, parse_quantity, parse_unit
 
@@ -630,6 +631,7 @@ class _Builder:
         gforces = self.build_generalized_forces()
         kinetic, potential = self.build_energy()
         self.check_explicit_placement()
+        figure = validate_figure(doc.figure, self.smap, self.coords, self.params, self.errors)  # spec/figure.py
         if self.errors:
             raise SpecErrors(self.errors)
         ask = self.build_ask(bool(self.coords))
@@ -656,6 +658,7 @@ class _Builder:
             potential_energy=potential,
             ask=ask,
             origin=self.smap.location(()),
+            figure=figure,
         )
 
     def build_parameters(self) -> None:
