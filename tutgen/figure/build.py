@@ -37,7 +37,7 @@ TARGET_SIZE = 5.0
 PIN = 0.09
 MASS = 0.13
 SLIDER = (0.8, 0.5)  # width along the rail, height (cm)
-ARC = 0.6
+ARC = 0.75
 HEAD = (0.22, 0.08)  # arrow head length, half width (cm)
 
 Vec = np.ndarray
@@ -69,31 +69,56 @@ def _rotation(axis: Vec, angle: float) -> Vec:
 
 
 class _Numbers:
-    """Floats for sympy expressions, from one table of symbol values."""
+    """Floats for sympy expressions, from one table of symbol values.
 
-    def __init__(self, table: dict[sp.Symbol, float]) -> None:
+    Values of expressions free of the coordinates are kept in a cache shared by every pose derived
+    with :meth:`with_`, since drawing one figure evaluates the same joint offsets for many poses."""
+
+    def __init__(self, table: dict[sp.Symbol, float], moving: frozenset[sp.Symbol] = frozenset()) -> None:
         self.table = {s: sp.Float(v) for s, v in table.items()}
+        self.moving = moving
+        self.cache: dict[sp.Basic, float] = {}
+        self.mcache: dict[int, tuple[object, Vec]] = {}
 
     def with_(self, symbol: sp.Symbol, value: float) -> _Numbers:
-        out = _Numbers({})
+        out = _Numbers({}, self.moving)
         out.table = {**self.table, symbol: sp.Float(value)}
+        out.cache, out.mcache = self.cache, self.mcache
         return out
 
     def __call__(self, expr: object) -> float:
-        e = sp.sympify(expr).xreplace(self.table)
+        e0 = sp.sympify(expr)
+        if e0.is_Number:
+            return float(e0)
+        hit = self.cache.get(e0)
+        if hit is not None:
+            return hit
+        e = e0.xreplace(self.table)
         rest = e.free_symbols
         if rest:
             e = e.xreplace({s: sp.Float(1) for s in rest})
         try:
-            return float(e)
+            value = float(e)
         except TypeError:
-            return 0.0
+            value = 0.0
+        if not (e0.free_symbols & self.moving):
+            self.cache[e0] = value
+        return value
 
     def vec(self, m: object) -> Vec:
-        return np.array([self(v) for v in sp.Matrix(m)], dtype=float)
+        return self.mat(m).reshape(-1)
 
     def mat(self, m: object) -> Vec:
-        return np.array([[self(v) for v in row] for row in sp.Matrix(m).tolist()], dtype=float)
+        """A matrix as floats; a constant one is converted once per drawing (keyed by the object,
+        which the model keeps alive)."""
+        hit = self.mcache.get(id(m))
+        if hit is not None and hit[0] is m:
+            return hit[1].copy()
+        mm = sp.Matrix(m)
+        value = np.array([[self(v) for v in row] for row in mm.tolist()], dtype=float)
+        if not (mm.free_symbols & self.moving):
+            self.mcache[id(m)] = (m, value)
+        return value.copy()
 
 
 class _Pose:
@@ -204,7 +229,7 @@ class _Builder:
             table[c.q] = value
             at.append((c.name, value))
         self.at = at
-        self.num = _Numbers(table)
+        self.num = _Numbers(table, frozenset(c.q for c in s.coordinates))
 
     def _is_geometric(self, symbol: sp.Symbol) -> bool:
         if not hasattr(self, "_geometric"):
@@ -518,6 +543,12 @@ class _Builder:
                 out.append(pose.point(body.name, self.num.vec(part.at)))
         return out
 
+    def part_centres(self, body: Body, pose: _Pose) -> list[Vec]:
+        """The centres of a body's shaped parts (not point masses: far_points has those)."""
+        if body.is_simple or all(p.shape is Shape.POINT for p in body.parts):
+            return []
+        return [pose.point(body.name, self.num.vec(p.at)) for p in body.parts if p.shape is not Shape.POINT]
+
     def draw_links(self) -> None:
         pose = self.pose
         for j in self.s.joints:
@@ -534,6 +565,9 @@ class _Builder:
             for far in self.far_points(b, pose):
                 if np.linalg.norm(far - o) * self.scale > 1e-3:
                     self.line([self.P(o), self.P(far)], Stroke.BAR)
+            for centre in self.part_centres(b, pose):  # a stem to a shape set off the joint (a top)
+                if np.linalg.norm(centre - o) * self.scale > 1e-3:
+                    self.line([self.P(o), self.P(centre)], Stroke.OUTLINE)
         for j in self.s.joints:
             if j.kind is JointKind.REVOLUTE:
                 self.circle(self.P(self.pose.joint_at[j.name]), PIN)
@@ -814,7 +848,9 @@ class _Builder:
                     continue
                 u = d / n
                 nrm = np.array([-u[1], u[0]])
-                shift = nrm * (0.12 if count % 2 == 0 else -0.12) * (1 if count else 0)
+                # a second element between the same places runs beside the first, not over it
+                up = nrm if nrm[1] >= 0 else -nrm
+                shift = up * 0.3 * count
                 a2, b2 = np.array(a) + shift, np.array(b) + shift
                 count += 1
                 if wall:
@@ -937,6 +973,8 @@ class _Builder:
 
     def draw_generalized_forces(self) -> None:
         joint_of = {j.coordinate.name: j for j in self.s.joints if j.coordinate is not None}
+        if self.view == "oblique" and len(self.s.coordinates) > 3:
+            return  # a spatial arm's joint torques would hide its frames; the solution names them
         for name, expr in self.s.generalized_forces:
             tex = self.tex_of(expr, name)
             names = f"generalized_force:{name}"
@@ -987,15 +1025,15 @@ class _Builder:
             center = self.pose.joint_at[j.name]
             axis = self.pose.axis_of[j.name]
             body = self.s.body(j.child)
-            now_pts = [p for p in self.far_points(body, self.pose) if np.linalg.norm(p - center) > 1e-9]
-            zero_pts = [p for p in self.far_points(body, zero) if np.linalg.norm(p - center) > 1e-9]
+            now_pts = self.far_points(body, self.pose) + self.part_centres(body, self.pose)
+            zero_pts = self.far_points(body, zero) + self.part_centres(body, zero)
             child_o = self.pose.frames[j.child][0]
             if np.linalg.norm(child_o - center) > 1e-9:
                 now_pts.insert(0, child_o)
                 zero_pts.insert(0, zero.frames[j.child][0])
             good = [
                 (p - center, q - center)
-                for p, q in zip(now_pts, zero_pts, strict=False)
+                for p, q in zip(now_pts, zero_pts, strict=True)
                 if np.linalg.norm(np.cross(p - center, axis)) > 1e-9
             ]
             if good:
@@ -1058,6 +1096,7 @@ class _Builder:
                 continue
             k += 1
             o, r = self.pose.frames[b.name]
+            # the DH frames: x and z of each; a long arm names only the z axes, to stay legible
             for col, letter in ((0, "x"), (2, "z")):
                 d = self.page_dir(o, r[:, col])
                 if d is None:
@@ -1065,7 +1104,8 @@ class _Builder:
                 start = self.P(o)
                 end = (start[0] + d[0] * 0.7, start[1] + d[1] * 0.7)
                 self.arrow(start, end, Stroke.THIN)
-                self.label(f"frame:{b.name}:{letter}", f"{letter}_{{{k}}}", end, d)
+                if letter == "z" or len(self.s.joints) <= 3:
+                    self.label(f"frame:{b.name}:{letter}", f"{letter}_{{{k}}}", end, d)
 
     # -- gravity, world axes, energy-only specs --------------------------------------------------
     def draw_gravity_and_axes(self) -> None:
@@ -1110,15 +1150,23 @@ class _Builder:
 
     # -- 6. labels ----------------------------------------------------------------------------
     def place_labels(self) -> list[Label]:
+        """Each label next to its anchor, on the side it asks for when that place is free; otherwise
+        the nearest place (eight directions, four distances) that overlaps no placed label, then the
+        fewest pins and masses, then the fewest lines. A label moved off another label is remarked on."""
         placed: list[Label] = []
+        ink = self.ink_points()
+        boxes = np.zeros((0, 4))  # the placed labels' boxes, widened by a small gap
+        obstacles = np.array([[b.x0, b.y0, b.x1, b.y1] for b in self.obstacles]).reshape(-1, 4)
+        gap = 0.04
         for names, tex, anchor, direction in self.requests:
             w, h = label_size(tex)
             dx, dy = direction
             n = math.hypot(dx, dy)
             base = math.atan2(dy, dx) if n > 1e-9 else math.pi / 4
             best: tuple[float, Label] | None = None
-            first: Label | None = None
-            for dist in (0.0, 0.25, 0.5, 0.8) if n <= 1e-9 else (0.14, 0.35, 0.6, 0.9):
+            first_clash = 0.0
+            dists = (0.0, 0.25, 0.5, 0.8, 1.2) if n <= 1e-9 else (0.1, 0.3, 0.55, 0.9, 1.3)
+            for i, dist in enumerate(dists):
                 for turn in (0, 1, -1, 2, -2, 3, -3, 4):
                     a = base + turn * math.pi / 4
                     reach = dist + 0.5 * (abs(math.cos(a)) * w + abs(math.sin(a)) * h)
@@ -1126,32 +1174,65 @@ class _Builder:
                         reach = 0.0
                     at = (round(anchor[0] + math.cos(a) * reach, 3), round(anchor[1] + math.sin(a) * reach, 3))
                     cand = Label(names, tex, at, round(w, 3), round(h, 3))
-                    first = first or cand
-                    cost = sum(_overlap(cand.box, o.box) for o in placed) + 0.5 * sum(
-                        _overlap(cand.box, ob) for ob in self.obstacles
-                    )
-                    if best is None or cost < best[0] - 1e-9:
+                    box = cand.box
+                    clash = _overlaps(box, boxes, gap)
+                    if i == 0 and turn == 0:
+                        first_clash = clash
+                    cost = 1000 * clash + 10 * _overlaps(box, obstacles, 0.0)
+                    cost += 0.05 * _inside(box, ink) + 0.02 * (i + abs(turn))
+                    if best is None or cost < best[0] - 1e-12:
                         best = (cost, cand)
-                    if cost == 0:
-                        break
-                if best is not None and best[0] == 0:
+                if best is not None and best[0] < 0.3:
                     break
-            assert best is not None and first is not None
-            if best[1] != first:
-                self.remarks.append(f"the label of {names.replace(':', ' ')} was moved off another label or a part")
-            if best[0] > 0:
-                self.remarks.append(f"the label of {names.replace(':', ' ')} still overlaps; no free place was found")
+            assert best is not None
+            final = best[1].box
+            final_clash = _overlaps(final, boxes, gap)
+            what = names.replace(":", " ").replace("/", " ")
+            if first_clash > 0 and final_clash == 0:
+                self.remarks.append(f"the label of {what} was moved off another label")
+            elif final_clash > 0:
+                self.remarks.append(f"the label of {what} still overlaps another label; no free place was found")
             placed.append(best[1])
+            boxes = np.vstack([boxes, [final.x0, final.y0, final.x1, final.y1]])
         return placed
+
+    def ink_points(self) -> np.ndarray:
+        """Points every 0.08 cm along every line drawn, to keep labels off the lines."""
+        pts: list[tuple[float, float]] = []
+        for prim in self.prims:
+            if isinstance(prim, Circle):
+                pts.append(prim.center)
+                continue
+            ring = (*prim.points, prim.points[0]) if prim.closed else prim.points
+            for (x0, y0), (x1, y1) in zip(ring, ring[1:], strict=False):
+                k = max(1, int(math.hypot(x1 - x0, y1 - y0) / 0.08))
+                pts += [(x0 + (x1 - x0) * t / k, y0 + (y1 - y0) * t / k) for t in range(k)]
+        return np.array(pts) if pts else np.zeros((0, 2))
+
+
+def _overlaps(box: Box, boxes: np.ndarray, gap: float) -> float:
+    """The total area by which ``box`` overlaps the rows (x0, y0, x1, y1) of ``boxes``."""
+    if not len(boxes):
+        return 0.0
+    w = np.minimum(box.x1, boxes[:, 2]) - np.maximum(box.x0, boxes[:, 0]) + gap
+    h = np.minimum(box.y1, boxes[:, 3]) - np.maximum(box.y0, boxes[:, 1]) + gap
+    return float(np.sum(np.where((w > 1e-9) & (h > 1e-9), w * h, 0.0)))
+
+
+def _inside(box: Box, pts: np.ndarray) -> int:
+    if not len(pts):
+        return 0
+    x, y = pts[:, 0], pts[:, 1]
+    return int(np.count_nonzero((x > box.x0) & (x < box.x1) & (y > box.y0) & (y < box.y1)))
 
 
 def _is_negative(expr: sp.Expr) -> bool:
     return bool(sp.sympify(expr).could_extract_minus_sign())
 
 
-def _overlap(a: Box, b: Box) -> float:
-    w = min(a.x1, b.x1) - max(a.x0, b.x0)
-    h = min(a.y1, b.y1) - max(a.y0, b.y0)
+def _overlap(a: Box, b: Box, gap: float = 0.0) -> float:
+    w = min(a.x1, b.x1) - max(a.x0, b.x0) + gap
+    h = min(a.y1, b.y1) - max(a.y0, b.y0) + gap
     return w * h if w > 1e-9 and h > 1e-9 else 0.0
 
 
