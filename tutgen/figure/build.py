@@ -20,6 +20,7 @@ Steps (each a method of :class:`_Builder`, in drawing order):
 
 from __future__ import annotations
 
+import itertools
 import math
 import re
 from collections.abc import Iterable, Sequence
@@ -1204,7 +1205,7 @@ class _Builder:
                 pts.append(prim.center)
                 continue
             ring = (*prim.points, prim.points[0]) if prim.closed else prim.points
-            for (x0, y0), (x1, y1) in zip(ring, ring[1:], strict=False):
+            for (x0, y0), (x1, y1) in itertools.pairwise(ring):
                 k = max(1, int(math.hypot(x1 - x0, y1 - y0) / 0.08))
                 pts += [(x0 + (x1 - x0) * t / k, y0 + (y1 - y0) * t / k) for t in range(k)]
         return np.array(pts) if pts else np.zeros((0, 2))
