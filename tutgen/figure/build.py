@@ -143,6 +143,9 @@ class _Pose:
             body = self.system.body(name)
             pos = num.vec(body.position) if body.position is not None else np.zeros(3)
             rot = num.mat(body.rotation) if body.rotation is not None else np.eye(3)
+            if body.rotation is None:  # intrinsic rotations, each about the axes turned so far
+                for axis, angle in body.rotation_rates:
+                    rot = rot @ _rotation(num.vec(axis), num(angle))
         else:
             p, r = self.frame(joint.parent, depth + 1)
             base = p + r @ num.vec(joint.origin_offset)
@@ -259,6 +262,8 @@ class _Builder:
                 return j.kind is JointKind.REVOLUTE
         for b in self.s.bodies:
             if b.rotation is not None and c.q in b.rotation.free_symbols:
+                return True
+            if any(c.q in sp.sympify(angle).free_symbols for _axis, angle in b.rotation_rates):
                 return True
             if b.position is not None:
                 for f in sp.Matrix(b.position).atoms(sp.sin, sp.cos):
@@ -491,13 +496,22 @@ class _Builder:
                 self.draw_prismatic(j)
                 continue
             if j.kind is JointKind.REVOLUTE and j.parent == GROUND:
-                self.ground_support(at)
+                # a ceiling for a body hanging below its pivot, a floor otherwise
+                body = self.s.body(j.child)
+                far = self.far_points(body, pose) + self.part_centres(body, pose)
+                below = [self.P(p)[1] - at[1] for p in far]
+                if self.view == "planar":
+                    self.ground_support(at, hanging=bool(below) and sum(below) < -1e-6 * len(below))
+                else:  # spatial: a base under the joint's axis, clear of the angle's arc
+                    self.ground_support((at[0], at[1] - 0.55))
 
-    def ground_support(self, at: Point) -> None:
+    def ground_support(self, at: Point, hanging: bool = False) -> None:
+        """A fixed pivot's support: a triangle on a hatched floor, or hung from a ceiling."""
         x, y = at
-        self.line([(x, y), (x - 0.22, y - 0.34), (x + 0.22, y - 0.34)], Stroke.OUTLINE, Fill.WHITE, closed=True)
-        self.hatch((x - 0.36, y - 0.34), (x + 0.36, y - 0.34), (0.0, -1.0))
-        self.obstacles.append(Box(x - 0.36, y - 0.5, x + 0.36, y))
+        k = -1.0 if hanging else 1.0  # hanging: mirrored above the pin
+        self.line([(x, y), (x - 0.22, y - 0.34 * k), (x + 0.22, y - 0.34 * k)], Stroke.OUTLINE, Fill.WHITE, closed=True)
+        self.hatch((x - 0.36, y - 0.34 * k), (x + 0.36, y - 0.34 * k), (0.0, -k))
+        self.obstacles.append(Box(x - 0.36, min(y, y - 0.5 * k), x + 0.36, max(y, y - 0.5 * k)))
 
     def draw_prismatic(self, j: Joint) -> None:
         pose = self.pose
@@ -681,6 +695,8 @@ class _Builder:
                 deps |= b.position.free_symbols
             if b.rotation is not None:
                 deps |= b.rotation.free_symbols
+            for _axis, angle in b.rotation_rates:
+                deps |= sp.sympify(angle).free_symbols
             if c.q in deps:
                 return b
         return None
@@ -757,6 +773,8 @@ class _Builder:
         self, c: Coordinate, center: Vec, zero_dir: Vec, now_dir: Vec, axis: Vec, tex: str, radius: float = ARC
     ) -> None:
         """The arc of an angle from its reference line (dashed) to the line it measures."""
+        if self.view == "oblique":
+            radius *= 1.5  # a circle seen obliquely is a flat ellipse: give it room
         axis = axis / (np.linalg.norm(axis) or 1.0)
         u = zero_dir - axis * float(zero_dir @ axis)
         w = now_dir - axis * float(now_dir @ axis)
@@ -790,6 +808,7 @@ class _Builder:
         ext = sp.sympify(el.extension)  # type: ignore[attr-defined]
         coords = [c for c in self.s.coordinates if c.q in ext.free_symbols]
         points: list[tuple[Point, Point]] = []
+        grounded = False
         for c in coords:
             joint = next((j for j in self.s.joints if j.coordinate is not None and j.coordinate.name == c.name), None)
             if joint is not None and joint.kind is JointKind.PRISMATIC:
@@ -797,6 +816,7 @@ class _Builder:
                 zero = self.P(_Pose(self.s, self.num.with_(c.q, 0.0)).frames[joint.child][0])
                 points.append((zero, now))
                 body = joint.child
+                grounded = joint.parent == GROUND
             elif c.name in getattr(self, "explicit_marks", {}):
                 body_ = self.carrier(c)
                 if body_ is None:
@@ -813,6 +833,8 @@ class _Builder:
             d = np.array(now) - np.array(zero)
             if np.linalg.norm(d) < 1e-9:
                 return None
+            if not grounded:  # along a moving line (a bead in a tube): from the coordinate's zero
+                return zero, now, False
             u = d / np.linalg.norm(d)
             wall = tuple(np.array(zero) - u * 1.0)
             return wall, now, True  # type: ignore[return-value]
@@ -1126,7 +1148,9 @@ class _Builder:
                 if tex == word_tex("g"):
                     tex = "g"
                 self.label("gravity", tex, ((tail[0] + tip[0]) / 2, (tail[1] + tip[1]) / 2), (1.0, 0.0))
-        origin = (box.x0 - 0.9, box.y0 - 0.3) if self.s.bodies else (box.x0, box.y0 - 1.2)
+        if not self.s.bodies:
+            return  # T and U given: there is no geometry to put axes on
+        origin = (box.x0 - 0.9, box.y0 - 0.3)
         axes = [(0, "x"), (1, "y"), (2, "z")]
         if self.view == "planar":
             axes = [(k, n) for k, n in axes if k in self.screen]
