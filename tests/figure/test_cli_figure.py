@@ -87,3 +87,30 @@ def test_solve_json_says_where_the_figure_is() -> None:
     assert figure["view"] == "planar"
     assert set(figure["at"]) == {"d", "theta"}
     assert "coordinate:theta" in figure["labels"]
+
+
+def test_sheet_latex_sets_the_figure_beside_each_problem() -> None:
+    from tests.conftest import solved
+    from tutgen.sheet.render import problem_view, render_sheet, sheet_context
+
+    _system, derivation, _doc = solved(str(P09))
+    header = {"title": "Sheet", "course": "", "date": "", "label": ""}
+    context = sheet_context(header, [derivation, derivation], solution=False)
+    tex = render_sheet(context, "questions", "tex")
+    assert tex.count("\\begin{tikzpicture}") == 2
+    assert "\\usepackage{tikz}" in tex
+    assert problem_view(1, derivation, solution=False)["figure"]["svg"] == "p09-pr-manipulator.figure.svg"
+
+
+def test_solution_latex_and_markdown_hold_the_figure() -> None:
+    from tests.conftest import solved
+    from tutgen.api import render
+
+    _system, derivation, _doc = solved(str(P09))
+    tex = render(derivation, "tex")
+    assert isinstance(tex, str)
+    assert "\\usepackage{tikz}" in tex and tex.index("\\begin{tikzpicture}") < tex.index("\\section")
+    md = render(derivation, "md")
+    assert isinstance(md, str) and md.splitlines()[2] == (
+        "![Figure: PR manipulator with a singular inertia matrix](<p09-pr-manipulator.figure.svg>)"
+    )
