@@ -126,3 +126,34 @@ def test_drawing_never_uses_unsafe_user_tex() -> None:
 def test_drawing_uses_safe_user_tex() -> None:
     drawing = draw_system(load_system_text(PENDULUM % "\\varphi_{0}"))
     assert any(lb.tex == "\\varphi_{0}" for lb in drawing.labels)
+
+
+ARM = """title: Two links
+parameters: [m, l, g]
+coordinates: [a, b]
+gravity: [0, -g, 0]
+bodies:
+  b1: {mass: m, com: [l, 0, 0]}
+  b2: {mass: m, com: [l, 0, 0]}
+joints:
+  j1: {type: revolute, parent: ground, child: b1, coordinate: a}
+  j2: {type: revolute, parent: b1, child: b2, origin: [l, 0, 0], coordinate: b}
+"""
+
+
+def test_drawing_links_folded_back_by_figure_at_are_remarked_on() -> None:
+    from tutgen.figure.build import _links_overlap
+
+    folded = draw_system(load_system_text(ARM + "figure: {at: {b: 180 deg}}\n"))
+    assert _links_overlap(folded)
+    assert "two links overlap at the pose given by figure.at" in folded.remarks
+    default = draw_system(load_system_text(ARM))
+    assert not _links_overlap(default) and not default.remarks
+
+
+def test_drawing_default_pose_of_every_tutorial_spec_has_no_overlapping_links() -> None:
+    from tutgen.figure.build import _links_overlap
+
+    for key in KEYS:
+        if key.startswith("tutorial-1:"):
+            assert not _links_overlap(drawn(key)[1]), key

@@ -20,6 +20,7 @@ Steps (each a method of :class:`_Builder`, in drawing order):
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 import re
@@ -44,9 +45,63 @@ HEAD = (0.22, 0.08)  # arrow head length, half width (cm)
 Vec = np.ndarray
 
 
+#: Sign patterns tried for the default relative angles when the first pose makes links overlap.
+_POSE_SIGNS = ((1, 1, 1, 1, 1, 1), (1, -1, 1, -1, 1, -1), (1, 1, -1, -1, 1, 1), (-1, 1, 1, -1, -1, 1))
+
+
 def draw_system(system: System) -> Drawing:
-    """The schematic of ``system`` (see the module docstring for how it is made)."""
-    return _Builder(system).build()
+    """The schematic of ``system`` (see the module docstring for how it is made).
+
+    When the default pose makes two links overlap (a chain folding back on itself), the next sign
+    pattern of the default angles is tried, and the change is remarked on; a pose the spec gives
+    (``figure.at``) is kept as it is, with a remark."""
+    drawing = _Builder(system).build()
+    if not _links_overlap(drawing):
+        return drawing
+    given = {name for name, _v in (system.figure.at if system.figure else ())}
+    if given:
+        return _remarked(drawing, "two links overlap at the pose given by figure.at")
+    for signs in _POSE_SIGNS[1:]:
+        other = _Builder(system, signs).build()
+        if not _links_overlap(other):
+            return _remarked(other, "the default pose made two links overlap; some angles are drawn negative")
+    return _remarked(drawing, "two links overlap at every default pose tried")
+
+
+def _remarked(drawing: Drawing, remark: str) -> Drawing:
+    return dataclasses.replace(drawing, remarks=(*drawing.remarks, remark))
+
+
+def _links_overlap(drawing: Drawing) -> bool:
+    """Whether two bars of the drawing cross, or one lies along the other from a shared end."""
+    bars = [
+        p.points
+        for p in drawing.primitives
+        if isinstance(p, Polyline) and p.stroke is Stroke.BAR and len(p.points) == 2
+    ]
+    for i, (a, b) in enumerate(bars):
+        for c, d in bars[i + 1 :]:
+            shared = [(p, q) for p in (a, b) for q in (c, d) if math.dist(p, q) < 0.02]
+            if shared:
+                p, _q = shared[0]
+                u = (b[0] - a[0], b[1] - a[1]) if p == a else (a[0] - b[0], a[1] - b[1])
+                v = (d[0] - c[0], d[1] - c[1]) if math.dist(p, c) < 0.02 else (c[0] - d[0], c[1] - d[1])
+                nu, nv = math.hypot(*u), math.hypot(*v)
+                if nu > 0.05 and nv > 0.05 and (u[0] * v[0] + u[1] * v[1]) / (nu * nv) > math.cos(math.radians(4)):
+                    return True  # folded back along each other
+                continue
+            if _cross(a, b, c, d):
+                return True
+    return False
+
+
+def _cross(a: Point, b: Point, c: Point, d: Point) -> bool:
+    def side(p: Point, q: Point, r: Point) -> float:
+        return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
+
+    d1, d2 = side(c, d, a), side(c, d, b)
+    d3, d4 = side(a, b, c), side(a, b, d)
+    return d1 * d2 < -1e-9 and d3 * d4 < -1e-9
 
 
 # ---------------------------------------------------------------------------------------------
@@ -183,8 +238,9 @@ def _com_local(body: Body, num: _Numbers) -> Vec:
 
 
 class _Builder:
-    def __init__(self, system: System) -> None:
+    def __init__(self, system: System, signs: Sequence[int] = _POSE_SIGNS[0]) -> None:
         self.s = system
+        self.signs = signs  # of the default relative angles, in coordinate order
         self.cfg = system.figure or FigureConfig()
         self.prims: list[Primitive] = []
         self.requests: list[tuple[str, str, Point, Point]] = []  # names, tex, anchor, preferred direction
@@ -225,6 +281,7 @@ class _Builder:
                     value = last_absolute
                 else:
                     value = math.radians(40 if k_angle == 0 else 35 - 5 * min(k_angle - 1, 3))
+                    value *= self.signs[k_angle % len(self.signs)]
                     if k_angle == 0:
                         last_absolute = value
                 k_angle += 1
@@ -577,8 +634,17 @@ class _Builder:
             start = pose.joint_at[j.name]
             if np.linalg.norm(o - start) > 1e-9 and j.kind is not JointKind.PRISMATIC:
                 self.line([self.P(start), self.P(o)], Stroke.BAR)
-            for far in self.far_points(b, pose):
-                if np.linalg.norm(far - o) * self.scale > 1e-3:
+            # one bar per direction, to the farthest point: a mass on the way to the next joint sits on it
+            ends: list[Vec] = []  # a rod part is the link itself: no second bar along it
+            for part in b.parts:
+                if part.shape is Shape.ROD:
+                    ends += [p - o for p in self.part_points(b, part, pose) if np.linalg.norm(p - o) > 1e-9]
+            for far in sorted(self.far_points(b, pose), key=lambda p: -float(np.linalg.norm(p - o))):
+                d = far - o
+                if np.linalg.norm(d) * self.scale <= 1e-3:
+                    continue
+                if not any(np.linalg.norm(np.cross(d, e)) < 1e-9 * max(1.0, float(e @ e)) and d @ e > 0 for e in ends):
+                    ends.append(d)
                     self.line([self.P(o), self.P(far)], Stroke.BAR)
             for centre in self.part_centres(b, pose):  # a stem to a shape set off the joint (a top)
                 if np.linalg.norm(centre - o) * self.scale > 1e-3:
