@@ -15,7 +15,7 @@ from tutgen.figure.scene import Circle, Drawing, Fill, Polyline, Stroke
 from tutgen.figure.texlabel import svg_runs
 
 PX_PER_CM = 37.795
-FONT_PX = 14.0
+FONT_PX = 13.33  # 10 pt, the size of the TikZ labels
 _WIDTH = {  # px, as the TikZ widths in points (1 pt = 1.333 px)
     Stroke.BAR: 2.13,
     Stroke.OUTLINE: 1.07,
