@@ -223,3 +223,32 @@ def write_outputs(targets: list[Path], texts: list[str] | list[bytes] | list[str
             if isinstance(err, OSError):
                 raise UsageError(f"cannot write {target}: {err.strerror or err}") from None
             raise
+
+
+def figure_files(specs: list[Path], targets: list[Path], *, force: bool) -> tuple[list[Path], list[str | bytes]]:
+    """The files a Markdown solution refers to, to be written beside it: the generated figure's SVG
+    (``<spec>.figure.svg``) and a copy of the spec's own picture (``figure.file``, same relative path).
+    Refuses to overwrite an existing file without ``force``, as the solutions themselves."""
+    from tutgen.figure.view import svg_file
+    from tutgen.spec.validate import load_system
+
+    paths: list[Path] = []
+    contents: list[str | bytes] = []
+    for spec, target in zip(specs, targets, strict=True):
+        system = load_system(spec)
+        svg = svg_file(system)
+        if svg is not None:
+            paths.append(target.parent / svg[0])
+            contents.append(svg[1])
+        picture = system.figure.file if system.figure is not None else None
+        if picture is not None and picture.kind.value != "pdf":
+            copy = target.parent / picture.path
+            if copy.resolve() != picture.resolved:
+                paths.append(copy)
+                contents.append(picture.resolved.read_bytes())
+    for path in paths:
+        if _is_spec(path, specs):
+            raise UsageError(f"refusing to overwrite the spec {path} with a figure; choose another -o")
+        if path.exists() and not force:
+            raise UsageError(f"{path} exists; add --force to overwrite it")
+    return paths, contents

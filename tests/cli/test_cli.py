@@ -149,7 +149,8 @@ def test_solve_to_a_file(tmp_path: Path) -> None:
     assert result.exit_code == EXIT_OK, result.stderr
     assert result.stdout == ""
     assert target.read_text(encoding="utf-8") == expected_output(P04, "md")
-    assert [p.name for p in tmp_path.iterdir()] == ["solution.md"]  # no temporary file left behind
+    # no temporary file left behind; the figure is written beside the Markdown (docs/figures.md)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["p04-rp-arm.figure.svg", "solution.md"]
 
 
 @pytest.mark.usefixtures("cached_derive")
@@ -178,7 +179,8 @@ def test_output_directory_gets_one_file_per_spec(tmp_path: Path, fmt: str) -> No
     out = tmp_path / "out"
     result = run("solve", P04, P06, "--format", fmt, "-o", out)
     assert result.exit_code == EXIT_OK, result.stderr
-    assert sorted(p.name for p in out.iterdir()) == [f"p04-rp-arm.{fmt}", f"p06-two-prismatic.{fmt}"]
+    figures = ["p04-rp-arm.figure.svg", "p06-two-prismatic.figure.svg"] if fmt == "md" else []
+    assert sorted(p.name for p in out.iterdir()) == sorted([f"p04-rp-arm.{fmt}", f"p06-two-prismatic.{fmt}", *figures])
     for spec in (P04, P06):
         assert (out / f"{spec.stem}.{fmt}").read_text(encoding="utf-8") == expected_output(spec, fmt)
 

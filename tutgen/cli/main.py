@@ -11,7 +11,7 @@ import sys
 import typer
 
 from tutgen import __version__
-from tutgen.cli import check, schema_cmd, sheet, solve
+from tutgen.cli import check, figure, schema_cmd, sheet, solve
 from tutgen.cli.errors import install_signal_handlers, set_debug
 
 app = typer.Typer(
@@ -49,6 +49,7 @@ app.command(name="solve")(solve.solve)
 app.command(name="schema")(schema_cmd.schema)
 app.command(name="check")(check.check)
 app.command(name="sheet")(sheet.sheet)
+app.command(name="figure")(figure.figure)  # tutgen/cli/figure.py
 
 
 def run() -> None:

@@ -77,7 +77,7 @@ def solve(
     Existing files are overwritten only with --force, and never a spec itself.
     A PDF is written only to a file: --format pdf needs -o.
     """
-    from tutgen.api import plan_outputs, solve_specs, write_outputs
+    from tutgen.api import figure_files, plan_outputs, solve_specs, write_outputs
     from tutgen.errors import UsageError
 
     if output is None and format is Format.pdf:
@@ -91,4 +91,8 @@ def solve(
         assert isinstance(texts[0], str)
         stdout_write(texts[0])
         return
-    write_outputs(plan_outputs(specs, output, format.value, force=force), texts)
+    targets = plan_outputs(specs, output, format.value, force=force)
+    if format is Format.md:  # the figures beside the .md (tutgen/figure; docs/figures.md)
+        figures, contents = figure_files(specs, targets, force=force)
+        targets, texts = targets + figures, [*texts, *contents]
+    write_outputs(targets, texts)

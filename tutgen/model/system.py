@@ -18,6 +18,7 @@ from enum import StrEnum
 import sympy as sp
 
 from tutgen.errors import Location
+from tutgen.model.figure import FigureConfig
 from tutgen.spec.units import Dimension
 
 Vector = sp.ImmutableMatrix
@@ -220,6 +221,7 @@ class System:
     origin: Location = field(default_factory=lambda: Location("<spec>"))
     # how many significant figures decimals are printed with (None: the renderer's default, 4)
     significant_figures: int | None = None
+    figure: FigureConfig | None = None  # the spec's `figure:` section (drawing configuration, own picture)
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

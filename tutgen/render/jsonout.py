@@ -15,6 +15,7 @@ from sympy.printing.str import StrPrinter
 from tutgen import __version__
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.newton_euler import NewtonEuler
+from tutgen.figure.view import figure_json
 from tutgen.model.system import Ask
 
 JSON_FORMAT_VERSION = 1
@@ -162,6 +163,7 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
         "coordinates": [c.name for c in system.coordinates],
         "parameters": {p.name: (value(p.value) if p.value is not None else None) for p in system.parameters},
         "results": results,
+        "figure": figure_json(system),  # tutgen/figure/view.py; additive, docs/json-output.md
         "remarks": list(d.remarks),
         "checks": [{"name": c.name, "passed": c.passed, "detail": c.detail} for c in d.checks],
     }

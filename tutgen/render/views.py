@@ -26,6 +26,7 @@ import sympy as sp
 
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.newton_euler import PROJECTION_REMARK, NEMethod, NewtonEuler
+from tutgen.figure.view import figure_view
 from tutgen.model.system import Ask, Coordinate, System
 from tutgen.render.latex import LINE_WIDTH, TexPrinter, visible_length
 from tutgen.spec.units import decimal_text, in_unit
@@ -359,6 +360,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
         "given": given,
         "coordinates": coords,
         "sections": sections,
+        "figure": figure_view(s),  # tutgen/figure/view.py: the schematic (TikZ, SVG name) or the spec's picture
         "remarks": list(d.remarks),
         "checks": [
             c.detail

@@ -5,7 +5,8 @@ The template context of a sheet (templates/{markdown,latex}/sheet-*.j2), plain d
 - ``title``, ``course``, ``date``, ``label`` (the variant's label or the student's name; may be empty),
   ``kind`` (set by the template: "questions" or "worked solutions");
 - ``problems``: one mapping per problem, in sheet order, with ``number``, ``title``, ``statement``,
-  ``given`` and ``coordinates`` (lists of parts, as in tutgen/render/views.py), ``asked`` (texts), and
+  ``given`` and ``coordinates`` (lists of parts, as in tutgen/render/views.py), ``asked`` (texts),
+  ``figure`` (the problem's figure, as in tutgen/figure/view.py), and
   ``solution``: the worked solution's context from :func:`tutgen.render.views.solution_view`
   (``sections``, ``remarks``, ``checks``).
 
@@ -54,12 +55,19 @@ def problem_view(number: int, derivation: Derivation, solution: bool) -> dict[st
         "given": given_items(s),
         "coordinates": coords,
         "asked": asked,
+        "figure": _figure(s),  # tutgen/figure/view.py: the LaTeX sheets set it beside the problem
         "solution": {
             "sections": view["sections"] if view else [],
             "remarks": view["remarks"] if view else [],
             "checks": view["checks"] if view else [],
         },
     }
+
+
+def _figure(system: Any) -> dict[str, Any]:
+    from tutgen.figure.view import figure_view
+
+    return figure_view(system)
 
 
 def sheet_context(

@@ -583,6 +583,30 @@ AskItem = Literal[
 ]
 
 
+class FigureSpec(SpecModel):
+    """How the problem's figure is drawn (docs/figures.md)."""
+
+    at: dict[Name, Expr] = Field(
+        default_factory=dict,
+        description="The drawing's value of some coordinates, e.g. {theta: 30 deg, x: 0.4 m} (default: a pose "
+        "where every angle is visibly non-zero).",
+    )
+    sizes: dict[Name, Expr] = Field(
+        default_factory=dict,
+        description="The drawing size of symbolic lengths, e.g. {l1: 1 m, l2: 0.6 m} (default: 1 m for a length, "
+        "less for offsets and radii).",
+    )
+    file: Text | None = Field(
+        None,
+        description="The instructor's own picture (PNG, JPEG, PDF or SVG, at most 10 MiB), a path inside the "
+        "spec's folder; shown beside the generated figure, or instead of it with `generated: false`.",
+    )
+    generated: bool = Field(True, description="Whether tutgen draws the schematic (false: only `file`).")
+    view: Literal["auto", "planar", "oblique"] = Field(
+        "auto", description="The projection: planar for motion in one plane, oblique for spatial systems."
+    )
+
+
 class SpecDoc(SpecModel):
     """A tutgen spec: one mechanics problem."""
 
@@ -622,6 +646,7 @@ class SpecDoc(SpecModel):
     )
     energy: EnergySpec | None = None
     ask: list[AskItem] | None = Field(None, description="What to derive (default: everything that applies).")
+    figure: FigureSpec | None = Field(None, description="How the figure is drawn, or the instructor's own picture.")
 
 
 def json_schema() -> dict[str, Any]:

@@ -21,6 +21,7 @@ from tutgen.spec.builders.context import Context
 from tutgen.spec.builders.coordinates import build_coordinates, coordinates_with_dimensions
 from tutgen.spec.builders.elements import build_elements
 from tutgen.spec.builders.energy import build_energy
+from tutgen.spec.builders.figure import build_figure
 from tutgen.spec.builders.gravity import build_gravity
 from tutgen.spec.builders.joints import build_joints, check_explicit_placement
 from tutgen.spec.builders.loads import build_generalized_forces, build_loads
@@ -55,6 +56,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
     generalized_forces = build_generalized_forces(ctx)
     kinetic, potential = build_energy(ctx, body_names)
     check_explicit_placement(ctx, placed)
+    figure = build_figure(ctx)
     texts = build_texts(ctx)  # last: their maths may use every declared name
     if ctx.errors:
         raise SpecErrors(ctx.errors)
@@ -84,5 +86,6 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
         ask=ask,
         origin=smap.location(()),
         significant_figures=ctx.doc.significant_figures,
+        figure=figure,
     )
     return with_texts(system, texts)
