@@ -15,8 +15,7 @@ from typing import Any
 import jinja2
 import jinja2.sandbox
 
-from tutgen.render.latex import latex_escape
-from tutgen.render.markdown import md_escape
+from tutgen.render.escape import latex_escape, md_escape
 
 
 def template_root() -> Path:

@@ -10,10 +10,13 @@ Blocks, the items of ``section.blocks``:
 - ``{"kind": "text", "parts": [...]}``: a paragraph; each part is ``{"kind": "text", "text": ...}``
   (plain), ``{"kind": "strong", "text": ...}`` (bold) or ``{"kind": "math", "tex": ...}`` (inline maths);
 - ``{"kind": "subheading", "text": ...}``: a short bold lead-in, e.g. a body's name;
-- ``{"kind": "math", "tex": ..., "lines": [...]}``: displayed maths; ``lines`` are the equations of a
-  list ``a = …,\\quad b = …`` one by one, and ``stack`` is true when ``tex`` is too wide for one
-  line, for a template that then stacks them;
-- ``{"kind": "boxed", "tex": ..., "lines": [...]}``: a displayed final answer, set apart.
+- ``{"kind": "math", "tex": ..., "lines": [...], "rows": [...]}``: displayed maths; ``tex`` is the
+  display on one line, ``lines`` are the equations of a list ``a = …,\\quad b = …`` one by one, and
+  ``rows`` is empty when ``tex`` fits the line, else the rows of one alignment that the template sets
+  in ``align*`` (LaTeX) or ``aligned`` (Markdown): each row has one ``&``, before its relation sign
+  (the line breaking of tutgen.render.layout; nothing is ever scaled to fit);
+- ``{"kind": "boxed", "tex": ..., "lines": [...], "rows": [...]}``: a displayed final answer, set
+  apart (its rows are laid out a little narrower, for the box).
 
 ``section.intro``, each item of ``given`` and of ``coordinates`` are lists of parts as above.
 """
@@ -27,7 +30,8 @@ import sympy as sp
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.newton_euler import PROJECTION_REMARK, NEMethod, NewtonEuler
 from tutgen.model.system import Ask, Coordinate, System
-from tutgen.render.latex import LINE_WIDTH, TexPrinter, visible_length
+from tutgen.render.layout import BOXED_WIDTH_PT, LINE_WIDTH_PT, layout
+from tutgen.render.printer import TexPrinter
 from tutgen.spec.units import decimal_text, in_unit
 
 Part = dict[str, str]
@@ -84,9 +88,17 @@ def split_list(tex: str) -> list[str]:
     return [ln.strip() for ln in lines]
 
 
-def display(tex: str, kind: str = "math") -> Block:
+def display(tex: str, kind: str = "math", stack: bool = False) -> Block:
+    """A displayed formula (or a list of equations joined by ``,\\quad``), laid out to the line width;
+    ``stack`` sets the equations one a line, relation signs aligned, even when they would fit on one."""
     lines = split_list(tex)
-    return {"kind": kind, "tex": tex, "lines": lines, "stack": len(lines) > 1 and visible_length(tex) > LINE_WIDTH}
+    width = BOXED_WIDTH_PT if kind == "boxed" else LINE_WIDTH_PT
+    return {"kind": kind, "tex": tex, "lines": lines, "rows": layout(lines, width, stack=stack)}
+
+
+def stacked(equations: list[str]) -> Block:
+    """Equations one a line, their relation signs aligned (a derivation's steps, a program)."""
+    return display(",\\quad ".join(equations), stack=True)
 
 
 def boxed(tex: str) -> Block:
@@ -131,7 +143,6 @@ PRINT_BUDGET = 4000
 #: beyond this many operations even entry by entry is unreadable (the fully symbolic PUMA: 180 000);
 #: a serial arm's H, C and G are then printed as the recursive program that computes them
 PROGRAM_BUDGET = 40000
-PROGRAM_CHUNK = 24  # definitions per display (an aligned block cannot break across a page)
 
 
 def _ops(*exprs: Any) -> int:
@@ -268,11 +279,13 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
             qd = tex(c.qd)
             sec["blocks"].append(para(text("Coordinate "), math(c.latex), text(":")))
             sec["blocks"].append(
-                display(
-                    f"\\begin{{aligned}}\\frac{{\\partial L}}{{\\partial {qd}}} &= {tex(num(t.dL_dqd))}\\\\ "
-                    f"\\frac{{d}}{{dt}}\\frac{{\\partial L}}{{\\partial {qd}}} &= {tex(num(t.ddt_dL_dqd))}\\\\ "
-                    f"\\frac{{\\partial L}}{{\\partial {c.latex}}} &= {tex(num(t.dL_dq))}\\\\ "
-                    f"Q_{{{c.latex}}} &= {tex(num(t.generalized_force))}\\end{{aligned}}"
+                stacked(
+                    [
+                        f"\\frac{{\\partial L}}{{\\partial {qd}}} = {tex(num(t.dL_dqd))}",
+                        f"\\frac{{d}}{{dt}}\\frac{{\\partial L}}{{\\partial {qd}}} = {tex(num(t.ddt_dL_dqd))}",
+                        f"\\frac{{\\partial L}}{{\\partial {c.latex}}} = {tex(num(t.dL_dq))}",
+                        f"Q_{{{c.latex}}} = {tex(num(t.generalized_force))}",
+                    ]
                 )
             )
         sections.append(sec)
@@ -459,16 +472,16 @@ def _newton_euler_section(
         if b.joint_in is None:  # no named reactions: what is left is balanced by the constraint forces
             blocks.append(
                 display(
-                    f"\\textstyle\\sum \\mathbf F - m\\mathbf a_G = {tex(num(b.force_balance))} = -\\mathbf F_c,"
-                    f"\\quad \\sum \\mathbf M_G - (I_G\\alpha + \\omega\\times I_G\\omega) = "
+                    f"{{\\textstyle\\sum}} \\mathbf F - m\\mathbf a_G = {tex(num(b.force_balance))} = -\\mathbf F_c,"
+                    f"\\quad {{\\textstyle\\sum}} \\mathbf M_G - (I_G\\alpha + \\omega\\times I_G\\omega) = "
                     f"{tex(num(b.moment_balance))} = -\\mathbf M_c"
                 )
             )
         else:
             blocks.append(
                 display(
-                    f"\\textstyle\\sum \\mathbf F = {tex(num(b.force_balance))} = \\mathbf 0,\\quad "
-                    f"\\sum \\mathbf M = {tex(num(b.moment_balance))} = \\mathbf 0"
+                    f"{{\\textstyle\\sum}} \\mathbf F = {tex(num(b.force_balance))} = \\mathbf 0,\\quad "
+                    f"{{\\textstyle\\sum}} \\mathbf M = {tex(num(b.moment_balance))} = \\mathbf 0"
                 )
             )
     if ne.reactions:
@@ -489,7 +502,7 @@ def _newton_euler_section(
         else:
             qd = tex(next(c.qd for c in coordinates if c.name == e.coordinate))
             lhs = (
-                f"\\textstyle\\sum_b \\big[(m\\mathbf a_G - \\mathbf F)\\cdot\\frac{{\\partial \\mathbf v}}"
+                f"{{\\textstyle\\sum_b}} \\big[(m\\mathbf a_G - \\mathbf F)\\cdot\\frac{{\\partial \\mathbf v}}"
                 f"{{\\partial {qd}}} + (I_G\\alpha + \\omega\\times I_G\\omega - \\mathbf M)\\cdot"
                 f"\\frac{{\\partial \\omega}}{{\\partial {qd}}}\\big]"
             )
@@ -562,18 +575,17 @@ def _program_blocks(d: Derivation, tex: TexPrinter, numeric: Any, size: int, wit
             )
         )
     ]
-    for start in range(0, len(needed), PROGRAM_CHUNK):
-        lines = [f"{tex(x)} &= {tex(num(e))}" for x, e in needed[start : start + PROGRAM_CHUNK]]
-        blocks.append(display("\\begin{aligned}" + " \\\\ ".join(lines) + "\\end{aligned}"))
+    # one alignment each (align* breaks across pages between its rows, under \\allowdisplaybreaks)
+    blocks.append(stacked([f"{tex(x)} = {tex(num(e))}" for x, e in needed]))
     blocks.append(para(prose("$H$ is symmetric, $H_{ji} = H_{ij}$; its entries on and above the diagonal:")))
-    h_lines = [f"H_{{{i + 1}{j + 1}}} &= {tex(num(program.mass_matrix[i, j]))}" for i in range(n) for j in range(i, n)]
-    for start in range(0, len(h_lines), PROGRAM_CHUNK):
-        blocks.append(
-            display("\\begin{aligned}" + " \\\\ ".join(h_lines[start : start + PROGRAM_CHUNK]) + "\\end{aligned}")
+    blocks.append(
+        stacked(
+            [f"H_{{{i + 1}{j + 1}}} = {tex(num(program.mass_matrix[i, j]))}" for i in range(n) for j in range(i, n)]
         )
+    )
     if with_c_g:
-        lines = [f"C_{{{i + 1}}} &= {tex(num(program.coriolis_vector[i]))}" for i in range(n)]
-        lines += [f"G_{{{i + 1}}} &= {tex(num(program.gravity_vector[i]))}" for i in range(n)]
-        lines += [f"Q_{{{i + 1}}} &= {tex(num(d.generalized_forces[i]))}" for i in range(n)]
-        blocks.append(display("\\begin{aligned}" + " \\\\ ".join(lines) + "\\end{aligned}"))
+        lines = [f"C_{{{i + 1}}} = {tex(num(program.coriolis_vector[i]))}" for i in range(n)]
+        lines += [f"G_{{{i + 1}}} = {tex(num(program.gravity_vector[i]))}" for i in range(n)]
+        lines += [f"Q_{{{i + 1}}} = {tex(num(d.generalized_forces[i]))}" for i in range(n)]
+        blocks.append(stacked(lines))
     return blocks
