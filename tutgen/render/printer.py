@@ -5,13 +5,18 @@ from __future__ import annotations
 
 import math
 import re
+from typing import Any, ClassVar
 
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 
 from tutgen.model.system import System
+from tutgen.render import order
 
 SIGNIFICANT_FIGURES = 4
+#: sums up to this many operations are printed in a teacher's order (collecting a bigger one costs more
+#: than it helps: it is printed entry by entry or as a program anyway)
+ORDER_BUDGET = 600
 
 
 def format_number(x: float, figures: int = SIGNIFICANT_FIGURES) -> str:
@@ -38,17 +43,50 @@ def _trim(text: str) -> str:
 
 
 class _Printer(LatexPrinter):
+    """sympy's LaTeX printer with tutgen's numbers and, given the ``roles`` of the symbols, a teacher's
+    order of the factors of a product and positive-lead brackets (tutgen.render.order)."""
+
+    _default_settings: ClassVar[dict[str, Any]] = {**LatexPrinter._default_settings, "roles": None}
+
     def _print_Float(self, expr: sp.Float) -> str:
         return format_number(float(expr))
 
+    def _print_Add(self, expr: sp.Add, order: str | None = None) -> str:
+        # the terms of a sum in sympy's lex order (an ordered equation is printed term by term instead)
+        return str(super()._print_Add(expr, order="lex"))
+
     def _print_Mul(self, expr: sp.Mul) -> str:
         """No ``1.0 x``: a unit float coefficient is left out. (Replacing it by 1 in the expression
-        does not stick: sympy caches and compares Float(1.0) and 1 as the same.)"""
+        does not stick: sympy caches and compares Float(1.0) and 1 as the same.) With roles, the
+        factors in a teacher's order, a bracket's minus sign taken outside, ``\\tfrac12`` in front."""
         coeff, rest = expr.as_coeff_Mul()
         if isinstance(coeff, sp.Float) and abs(float(coeff)) == 1.0 and rest != 1:
             body = self._print(rest)
             return body if float(coeff) > 0 else "- " + body
-        return super()._print_Mul(expr)
+        roles = self._settings["roles"]
+        if roles is None or rest == 1:
+            return str(super()._print_Mul(expr))
+        sign = -1 if coeff.is_negative else 1
+        coeff = abs(coeff)
+        factors: list[sp.Basic] = []
+        for f in sp.Mul.make_args(rest):
+            if isinstance(f, sp.Add) and f.could_extract_minus_sign():
+                f, sign = -f, -sign
+            factors.append(f)
+        factors.sort(key=lambda f: (order.factor_role(f, roles), sp.default_sort_key(f)))
+        head = ""
+        if coeff.is_Rational and not coeff.is_Integer and coeff.q <= 12 and abs(coeff.p) <= 12:
+            if not any(f.is_Pow and f.exp.is_negative for f in factors):
+                head, coeff = f"\\tfrac{{{coeff.p}}}{{{coeff.q}}} ", sp.S.One
+        lead = [coeff] if coeff != 1 else []
+        body = sp.Mul(*lead, *factors, evaluate=False) if len(factors) > 1 or lead else factors[0]
+        saved = self._settings["order"]
+        self._settings["order"] = "none"
+        try:
+            text = self._print(body) if not isinstance(body, sp.Mul) else str(super()._print_Mul(body))
+        finally:
+            self._settings["order"] = saved
+        return ("- " if sign < 0 else "") + head + text
 
 
 _TRIG = re.compile(r"\\(sin|cos|tan|cot|sec|csc)(\^\{[^{}]*\})?\{\\left\(")
@@ -94,6 +132,8 @@ class TexPrinter:
             names[c.qd] = _dotted(c.latex, r"\dot")
             names[c.qdd] = _dotted(c.latex, r"\ddot")
         self.names = names
+        self.system = system
+        self.roles = order.symbol_roles(system)
 
     def __call__(self, expr: object) -> str:
         if isinstance(expr, sp.MatrixBase):
@@ -101,14 +141,29 @@ class TexPrinter:
             return r"\begin{bmatrix}" + r" \\ ".join(rows) + r"\end{bmatrix}"
         if isinstance(expr, float):
             expr = sp.Float(expr)
-        return tidy_functions(_Printer({"symbol_names": self.names}).doprint(expr))
+        return tidy_functions(_Printer({"symbol_names": self.names, "roles": self.roles}).doprint(expr))
+
+    def ordered(self, expr: sp.Expr) -> str:
+        """An equation of motion's side as a teacher writes it (tutgen.render.order.equation_terms):
+        accelerations in coordinate order, velocity products, the rest; each bracket with a positive lead."""
+        found = order.equation_terms(expr, self.system) if isinstance(expr, sp.Expr) else None
+        if not found:
+            return self(expr)
+        pieces: list[str] = []
+        for sign, body in found:
+            text = self(body)
+            if text.startswith("- "):  # a body printed with its own minus (a negative number factor)
+                sign, text = -sign, text[2:]
+            pieces.append(("- " if sign < 0 else ("+ " if pieces else "")) + text)
+        return " ".join(pieces)
 
     def equation(self, lhs: str, expr: object, rhs: str = "") -> str:
         """``lhs = expr`` (or ``expr = rhs`` when ``lhs`` is empty) on one line: where it breaks when it is
         too wide is decided by its typeset width when the display is laid out (tutgen.render.layout)."""
         head = f"{lhs} = " if lhs else ""
         tail = f" = {rhs}" if rhs else ""
-        return f"{head}{self(expr)}{tail}"
+        small = isinstance(expr, sp.Expr) and sp.count_ops(expr) <= ORDER_BUDGET
+        return f"{head}{self.ordered(expr) if small else self(expr)}{tail}"
 
 
 def _dotted(latex: str, accent: str) -> str:

@@ -18,7 +18,8 @@ Blocks, the items of ``section.blocks``:
 - ``{"kind": "boxed", "tex": ..., "lines": [...], "rows": [...]}``: a displayed final answer, set
   apart (its rows are laid out a little narrower, for the box).
 
-``section.intro``, each item of ``given`` and of ``coordinates`` are lists of parts as above.
+``section.intro``, ``statement_parts`` (the statement, its ``$…$`` maths typeset) and each item of
+``given`` and of ``coordinates`` are lists of parts as above; ``statement`` is the raw text.
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ import sympy as sp
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.newton_euler import PROJECTION_REMARK, NEMethod, NewtonEuler
 from tutgen.model.system import Ask, Coordinate, System
+from tutgen.model.text import MathSpan, RichText
 from tutgen.render.layout import BOXED_WIDTH_PT, LINE_WIDTH_PT, layout
 from tutgen.render.printer import TexPrinter
 from tutgen.spec.units import decimal_text, in_unit
@@ -57,6 +59,34 @@ def prose(s: str) -> list[Part]:
         if piece:
             parts.append(math(piece) if i % 2 else text(piece))
     return parts
+
+
+def rich(value: str, tex: TexPrinter, before: str = "", after: str = "") -> list[Part]:
+    """A reader's text from the spec (a statement, a description) as parts: a :class:`RichText`'s
+    ``$…$`` spans typeset by the results' printer, its text parts (and a plain ``str``) kept as text for
+    the template to escape. ``before``/``after`` are wording of tutgen's own around it."""
+    parts: list[Part] = [text(before)] if before else []
+    for piece in value.parts if isinstance(value, RichText) else (value,):
+        if isinstance(piece, MathSpan):
+            printed = [tex(t) for t in piece.terms]
+            chain = printed[0]
+            for rel, term in zip(piece.relations, printed[1:], strict=True):
+                chain += f" {_RELATION_TEX.get(rel, rel)} {term}"
+            parts.append(math(chain))
+        elif piece:
+            parts.append(text(piece))
+    if after:
+        parts.append(text(after))
+    merged: list[Part] = []
+    for part in parts:  # neighbouring text parts as one
+        if merged and part["kind"] == merged[-1]["kind"] == "text":
+            merged[-1] = text(merged[-1]["text"] + part["text"])
+        else:
+            merged.append(part)
+    return merged
+
+
+_RELATION_TEX = {"!=": "\\ne", "<=": "\\le", ">=": "\\ge"}
 
 
 def para(*parts: Part | list[Part]) -> Block:
@@ -166,13 +196,19 @@ def given_items(system: System) -> list[list[Part]]:
             shown = decimal_text(number) if number.is_Rational else tex(number)
             item = [math(f"{p.latex} = {shown}{_unit(p.unit) if p.unit else ''}")]
             if p.description:
-                item.append(text(f" ({p.description})"))
+                item += rich(p.description, tex, " (", ")")
         else:
             item = [math(p.latex)]
             if p.description:
-                item.append(text(f": {p.description}"))
+                item += rich(p.description, tex, ": ")
         items.append(item)
     return items
+
+
+def coordinate_items(system: System) -> list[list[Part]]:
+    """Each generalized coordinate with its description."""
+    tex = TexPrinter(system)
+    return [[math(c.latex)] + (rich(c.description, tex, ": ") if c.description else []) for c in system.coordinates]
 
 
 def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
@@ -190,7 +226,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
     sections: list[dict[str, Any]] = []
 
     given = given_items(s)
-    coords = [[math(c.latex)] + ([text(f": {c.description}")] if c.description else []) for c in s.coordinates]
+    coords = coordinate_items(s)
 
     if Ask.INERTIA in s.ask and d.inertia:
         sec = section(
@@ -303,8 +339,8 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
     elif d.equations_of_motion is not None and Ask.EQUATIONS_OF_MOTION in s.ask:
         sec = section("Equations of motion")
         for eq, force in zip(d.equations_of_motion, d.generalized_forces, strict=True):
-            lhs = num(eq + force)
-            sec["blocks"].append(boxed(tex.equation("", lhs, tex(num(force)))))
+            lhs = num(eq + force)  # the equation's side without the inputs, which stand on the right
+            sec["blocks"].append(boxed(f"{tex.ordered(lhs)} = {tex(num(force))}"))
         sections.append(sec)
 
     if d.mass_matrix is not None and (Ask.MATRIX_FORM in s.ask or Ask.CHRISTOFFEL in s.ask):
@@ -369,6 +405,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
     return {
         "title": s.title,
         "statement": s.statement or "",
+        "statement_parts": rich(s.statement or "", tex),
         "given": given,
         "coordinates": coords,
         "sections": sections,
