@@ -71,3 +71,37 @@ def test_the_check_sees_an_overfull_line(tmp_path: Path) -> None:
     wide = " + ".join(f"a_{{{i}}} b_{{{i}}}" for i in range(60))
     tex = "\\documentclass{article}\\begin{document}\n\\[ " + wide + " \\]\n\\end{document}\n"
     assert max(overfull_boxes(tex, tmp_path)) > 1.0
+
+
+#: ASCII maths that must not appear in what tutgen itself writes (issue 14, point 3)
+ASCII_MATHS = ("_dot", "_ddot", "theta", "^", "**", "q''", "H = H^T")
+
+
+def _user_text(spec: Path) -> str:
+    """What the spec's author wrote and tutgen prints as given: title, statement, descriptions."""
+    system = solved(str(spec))[0]
+    texts = [system.title or "", system.statement or ""]
+    texts += [p.description or "" for p in system.parameters] + [c.description or "" for c in system.coordinates]
+    texts += [b.name for b in system.bodies] + [j.name for j in system.joints]
+    return "\n".join(texts)
+
+
+def _not_from_the_user(found: str, spec: Path) -> list[str]:
+    user = _user_text(spec)
+    return [tok for tok in ASCII_MATHS if tok in found and tok not in user]
+
+
+@pytest.mark.parametrize("spec", all_specs(), ids=lambda p: p.stem)
+def test_the_pdf_text_has_no_ascii_maths(spec: Path, tmp_path: Path) -> None:
+    """pdftotext of the PDF: none of the ASCII tokens, unless the spec's own text has them."""
+    if shutil.which("pdftotext") is None:
+        pytest.skip("pdftotext not installed")
+    from tutgen.api import render
+
+    tex = render(solved(str(spec))[1], "tex")
+    assert isinstance(tex, str)
+    overfull_boxes(tex, tmp_path)
+    text = subprocess.run(
+        ["pdftotext", "-enc", "UTF-8", "doc.pdf", "-"], cwd=tmp_path, capture_output=True, text=True, check=True
+    ).stdout
+    assert _not_from_the_user(text, spec) == []

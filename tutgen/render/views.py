@@ -18,8 +18,9 @@ Blocks, the items of ``section.blocks``:
 - ``{"kind": "boxed", "tex": ..., "lines": [...], "rows": [...]}``: a displayed final answer, set
   apart (its rows are laid out a little narrower, for the box).
 
-``section.intro``, ``statement_parts`` (the statement, its ``$…$`` maths typeset) and each item of
-``given`` and of ``coordinates`` are lists of parts as above; ``statement`` is the raw text.
+``remarks`` and ``checks`` (tutgen's own sentences, maths typeset), ``section.intro``,
+``statement_parts`` (the statement, its ``$…$`` maths typeset) and each item of ``given`` and of
+``coordinates`` are lists of parts as above; ``statement`` is the raw text.
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ from tutgen.model.system import Ask, Coordinate, System
 from tutgen.model.text import MathSpan, RichText
 from tutgen.render.layout import BOXED_WIDTH_PT, LINE_WIDTH_PT, layout
 from tutgen.render.printer import TexPrinter
+from tutgen.render.wording import engine_parts
 from tutgen.spec.units import decimal_text, in_unit
 
 Part = dict[str, str]
@@ -409,11 +411,15 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
         "given": given,
         "coordinates": coords,
         "sections": sections,
-        "remarks": list(d.remarks),
+        # tutgen's own sentences, their ASCII maths (q_ddot, theta1, H = H^T) typeset
+        "remarks": [engine_parts(r, tex) for r in d.remarks],
         "checks": [
-            c.detail
-            if c.detail.startswith("dimensions not checked")
-            else f"{c.detail}: {'passed' if c.passed else 'FAILED'}"
+            engine_parts(
+                c.detail
+                if c.detail.startswith("dimensions not checked")
+                else f"{c.detail}: {'passed' if c.passed else 'FAILED'}",
+                tex,
+            )
             for c in d.checks
         ],
     }
@@ -544,9 +550,9 @@ def _newton_euler_section(
                 f"\\frac{{\\partial \\omega}}{{\\partial {qd}}}\\big]"
             )
         blocks.append(display(f"{lhs} = {tex(num(e.projection))} = {tex(num(e.generalized_force))}"))
-    blocks += [para(text(r)) for r in ne.remarks if r != PROJECTION_REMARK]  # the intro said it
+    blocks += [para(engine_parts(r, tex)) for r in ne.remarks if r != PROJECTION_REMARK]  # the intro said it
     if ne.agrees_with_lagrange:
-        blocks.append(para(text(ne.agreement.detail + ".")))
+        blocks.append(para(engine_parts(ne.agreement.detail + ".", tex)))
     return sec
 
 
