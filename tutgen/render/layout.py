@@ -391,7 +391,15 @@ def _bracket(term: str) -> tuple[str, str, str] | None:
     best: tuple[str, str, str] | None = None
     depth, braces, start = 0, 0, -1
     i = 0
+    envs = 0  # inside a matrix or other environment: not a bracket of the term's own
     while i < len(term):
+        if term.startswith("\\begin{", i) or term.startswith("\\end{", i):
+            envs += 1 if term.startswith("\\begin{", i) else -1
+            i += 6
+            continue
+        if envs:
+            i += 1
+            continue
         if term.startswith("\\left", i) or term.startswith("\\right", i):
             opening = term.startswith("\\left", i)
             if opening and braces == 0 and depth == 0 and term.startswith("\\left(", i):
@@ -538,6 +546,13 @@ def expand_matrices(equation: str, width: float = LINE_WIDTH_PT) -> list[str]:
     return out
 
 
+def _left_column(items: list[str], width: float) -> float:
+    """The width of the left column that the equations share: their widest left side, leaving out
+    those too wide to align on (they flow from the margin)."""
+    lefts = [tex_width(relation_parts(e)[0]) for e in items if len(relation_parts(e)) > 1]
+    return max((w for w in lefts if w <= width / 3), default=0.0)
+
+
 def layout(equations: list[str], width: float = LINE_WIDTH_PT, stack: bool = False) -> list[str]:
     """Rows of one alignment for a display of ``equations``; ``[]`` when they fit on one line together
     (the caller then prints them as they are, joined by ``,\\quad``) unless ``stack`` asks for one
@@ -548,10 +563,15 @@ def layout(equations: list[str], width: float = LINE_WIDTH_PT, stack: bool = Fal
     items: list[str] = []
     for eq in equations:
         items += expand_matrices(eq, width)
-    lefts = [tex_width(relation_parts(e)[0]) for e in items if len(relation_parts(e)) > 1]
-    left = max(lefts, default=0.0)
-    if left > width / 3:
-        left = max((w for w in lefts if w <= width / 3), default=0.0)
+    for _ in range(2):  # a matrix that fits its own line may not fit beside a wider shared left column
+        left = _left_column(items, width)
+        wider: list[str] = []
+        for eq in items:
+            own = relation_parts(eq)
+            shift = max(0.0, left - tex_width(own[0])) if len(own) > 1 else 0.0
+            wider += expand_matrices(eq, width - shift) if shift else [eq]
+        items = wider
+    left = _left_column(items, width)
     rows: list[str] = []
     for k, eq in enumerate(items):
         eq_rows = break_equation(eq, width, left)

@@ -52,8 +52,21 @@ class _Printer(LatexPrinter):
         return format_number(float(expr))
 
     def _print_Add(self, expr: sp.Add, order: str | None = None) -> str:
-        # the terms of a sum in sympy's lex order (an ordered equation is printed term by term instead)
-        return str(super()._print_Add(expr, order="lex"))
+        """The terms of a sum in sympy's lex order (an ordered equation is printed term by term instead),
+        each term's sign as printed: a product whose bracket gave up its minus sign prints a minus."""
+        out = ""
+        for i, term in enumerate(self._as_ordered_terms(expr, order="lex")):
+            piece = str(self._print(term))
+            if self._needs_add_brackets(term):
+                piece = f"\\left({piece}\\right)"
+            negative = piece.startswith("-")
+            if negative:
+                piece = piece[1:].lstrip()
+            if i == 0:
+                out = ("- " if negative else "") + piece
+            else:
+                out += (" - " if negative else " + ") + piece
+        return out
 
     def _print_Mul(self, expr: sp.Mul) -> str:
         """No ``1.0 x``: a unit float coefficient is left out. (Replacing it by 1 in the expression

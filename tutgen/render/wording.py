@@ -142,6 +142,6 @@ _OTHER = (
     (r"\b(H|J|I|C|G|Q|T|U)_([0-9]+(?:,[0-9]+)?|[a-z])\b", _indexed),
     (r"\b([A-Za-z])\^(\d+|T)\b", lambda m: f"{m.group(1)}^{{{m.group(2)}}}"),
     (r"\b\d+(?:\.\d+)?e-?\d+\b", lambda m: format_number(float(m.group(0)))),
-    (r"\b[HCGQTU]\b(?!')", lambda m: m.group(0)),  # the matrices and energies, named by one capital
+    (r"\b[HCGQTUq]\b(?!')", lambda m: m.group(0)),  # the matrices, energies and q, by one letter
     (r"\b(" + "|".join(_GREEK) + r")\b", lambda m: _letter(m.group(1))),
 )
