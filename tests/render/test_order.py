@@ -22,17 +22,17 @@ def test_p03_equations_read_as_the_tutorial_prints_them() -> None:
     """Tutorial p03: F = (m_1+m_2)ẍ + m_2 l cos θ θ̈ − m_2 l sin θ θ̇² + kx (inertia, velocity, spring)."""
     first, second = _boxed(P03, "Equations of motion")
     assert first == (
-        r"\left(m_{1} + m_{2}\right) \ddot{x} + m_{2} l \cos\theta \ddot{\theta} - m_{2} l \sin\theta \dot{\theta}^{2}"
-        r" + k x = F"
+        r"\left(m_{1} + m_{2}\right) \ddot{x} + m_{2} l \cos\theta\, \ddot{\theta}"
+        r" - m_{2} l \sin\theta\, \dot{\theta}^{2} + k x = F"
     )
-    assert second == r"m_{2} l \cos\theta \ddot{x} + m_{2} l^{2} \ddot{\theta} + m_{2} l g \sin\theta = \tau"
+    assert second == r"m_{2} l \cos\theta\, \ddot{x} + m_{2} l^{2} \ddot{\theta} + m_{2} l g \sin\theta = \tau"
 
 
 def test_p03_kinetic_energy_has_the_half_in_front_and_squares_first() -> None:
     energies = _boxed(P03, "Energies")
     assert (
         r"T = \tfrac{1}{2} \left(m_{1} + m_{2}\right) \dot{x}^{2} + \tfrac{1}{2} m_{2} l^{2} \dot{\theta}^{2}"
-        r" + m_{2} l \cos\theta \dot{\theta} \dot{x}"
+        r" + m_{2} l \cos\theta\, \dot{\theta} \dot{x}"
     ) in energies
 
 

@@ -20,20 +20,20 @@ ORDER_BUDGET = 600
 
 
 def format_number(x: float, figures: int = SIGNIFICANT_FIGURES) -> str:
-    """A number as a person writes it: 4 significant figures, trailing zeros dropped,
-    ``6.131 \\times 10^{-3}`` below 0.01 and from 10^5 up."""
+    """A number as an engineer writes it: ``figures`` significant figures (trailing zeros dropped), as a
+    decimal from 0.001 up to 9999, beyond that in engineering notation, a mantissa from 1 to 999 and an
+    exponent that is a multiple of 3 (``375 \\times 10^{-6}``, ``123.5 \\times 10^{3}``): one style for every
+    number of a document, so that ``0.007891`` stands beside ``0.01899``."""
     if x == 0 or not math.isfinite(x):
         return "0" if x == 0 else str(x)
-    exponent = math.floor(math.log10(abs(x)))
-    mantissa = round(x / 10**exponent, figures - 1)
-    if abs(mantissa) >= 10:  # 9.9996 rounds up to 10.00
-        mantissa /= 10
-        exponent += 1
-    if -2 <= exponent < 5:
+    rounded = float(f"{x:.{figures - 1}e}")  # rounding first: 9.99996 is 10.00, with its exponent
+    exponent = math.floor(math.log10(abs(rounded)))
+    if -3 <= exponent <= 3:
         decimals = max(figures - 1 - exponent, 0)
-        text = f"{round(x, decimals):.{decimals}f}"
-        return _trim(text)
-    return f"{_trim(f'{mantissa:.{figures - 1}f}')} \\times 10^{{{exponent}}}"
+        return _trim(f"{rounded:.{decimals}f}")
+    engineering = 3 * (exponent // 3)
+    decimals = max(figures - 1 - (exponent - engineering), 0)
+    return f"{_trim(f'{rounded / 10**engineering:.{decimals}f}')} \\times 10^{{{engineering}}}"
 
 
 def _trim(text: str) -> str:
@@ -46,10 +46,14 @@ class _Printer(LatexPrinter):
     """sympy's LaTeX printer with tutgen's numbers and, given the ``roles`` of the symbols, a teacher's
     order of the factors of a product and positive-lead brackets (tutgen.render.order)."""
 
-    _default_settings: ClassVar[dict[str, Any]] = {**LatexPrinter._default_settings, "roles": None}
+    _default_settings: ClassVar[dict[str, Any]] = {
+        **LatexPrinter._default_settings,
+        "roles": None,
+        "figures": SIGNIFICANT_FIGURES,
+    }
 
     def _print_Float(self, expr: sp.Float) -> str:
-        return format_number(float(expr))
+        return format_number(float(expr), self._settings["figures"])
 
     def _print_Add(self, expr: sp.Add, order: str | None = None) -> str:
         """The terms of a sum in sympy's lex order (an ordered equation is printed term by term instead),
@@ -126,6 +130,8 @@ def tidy_functions(tex: str) -> str:
         head = f"\\{m.group(1)}{m.group(2) or ''}"
         if _ATOM.match(arg):
             out.append(tex[pos : m.start()] + head + ("" if arg.startswith("\\") else " ") + arg)
+            if re.match(r" +(?![-+=&)},]|\\(right|end|quad|cdot|times|Bigr|bigr)\b|\\\\)", tex[i:]):
+                out.append("\\,")  # cos θ θ̈, not cos θθ̈: a thin space before the next factor
         else:
             out.append(tex[pos : m.start()] + f"{head}({arg})")
         pos = i
@@ -147,6 +153,8 @@ class TexPrinter:
         self.names = names
         self.system = system
         self.roles = order.symbol_roles(system)
+        #: the spec's significant figures for decimals (None in the spec: the default, 4)
+        self.figures = getattr(system, "significant_figures", None) or SIGNIFICANT_FIGURES
 
     def __call__(self, expr: object) -> str:
         if isinstance(expr, sp.MatrixBase):
@@ -154,7 +162,8 @@ class TexPrinter:
             return r"\begin{bmatrix}" + r" \\ ".join(rows) + r"\end{bmatrix}"
         if isinstance(expr, float):
             expr = sp.Float(expr)
-        return tidy_functions(_Printer({"symbol_names": self.names, "roles": self.roles}).doprint(expr))
+        settings = {"symbol_names": self.names, "roles": self.roles, "figures": self.figures}
+        return tidy_functions(_Printer(settings).doprint(expr))
 
     def ordered(self, expr: sp.Expr) -> str:
         """An equation of motion's side as a teacher writes it (tutgen.render.order.equation_terms):
