@@ -34,7 +34,7 @@ def _shown(parts: list[dict[str, str]]) -> str:
             id="formula-joined",
         ),
         pytest.param("the condition -tau1 = 0.", r"the condition $-\tau_{1} = 0$.", id="sign-and-tail"),
-        pytest.param("the inertia J_m = 3.3e-05: it", r"the inertia $J_{m} = 3.3 \times 10^{-5}$: it", id="e-notation"),
+        pytest.param("the inertia J_m = 3.3e-05: it", r"the inertia $J_{m} = 33 \times 10^{-6}$: it", id="e-notation"),
         pytest.param("a body at rest is in a state", "a body at rest is in a state", id="words-stay-words"),
     ],
 )
