@@ -2,7 +2,8 @@
 
 Nothing here is ever scaled to fit. A display that is wider than the line is broken the way a person (or
 amsmath's ``split``/``multlined``) breaks it by hand, decided by the typeset WIDTH of each line, estimated
-from the LaTeX (the widths of Computer Modern at 11 pt; see :func:`tex_width`), against :data:`TEXT_WIDTH`:
+from the LaTeX (the widths of Computer Modern at 11 pt; see :func:`tex_width`), against
+:data:`LINE_WIDTH_PT` (a margin inside the text width :data:`TEXT_WIDTH`):
 
 1. a list of equations ``a = …,\\quad b = …`` that does not fit on one line is set one equation a line,
    every relation sign aligned;
