@@ -15,11 +15,13 @@ P05 = SPECS / "tutorial-1" / "p05-rr-arm.yaml"
 @pytest.mark.parametrize(
     ("value", "expected"),
     [
-        pytest.param(0.006131, r"6.131 \times 10^{-3}", id="small-scientific"),
+        pytest.param(0.006131, "0.006131", id="decimal-down-to-a-thousandth"),
+        pytest.param(0.000375, r"375 \times 10^{-6}", id="small-engineering"),
+        pytest.param(0.0001571, r"157.1 \times 10^{-6}", id="small-engineering-four-figures"),
         pytest.param(2.94337, "2.943", id="four-figures"),
-        pytest.param(7849.0, "7849", id="whole"),
         pytest.param(0.05, "0.05", id="trailing-zeros-dropped"),
-        pytest.param(123456.0, r"1.235 \times 10^{5}", id="large-scientific"),
+        pytest.param(123456.0, r"123.5 \times 10^{3}", id="large-engineering"),
+        pytest.param(7849.0, "7849", id="up-to-9999-a-decimal"),
         pytest.param(-0.0123, "-0.0123", id="negative"),
         pytest.param(0.0, "0", id="zero"),
         pytest.param(9.99996, "10", id="rounds-up"),
@@ -56,7 +58,7 @@ def test_printer_drops_unit_floats() -> None:
 
     system = solved(str(P05))[0]
     x = sp.Symbol("x")
-    assert TexPrinter(system)(sp.Float(1.0) * x + sp.Float(0.006131)) == r"x + 6.131 \times 10^{-3}"
+    assert TexPrinter(system)(sp.Float(1.0) * x + sp.Float(0.00006131)) == r"x + 61.31 \times 10^{-6}"
 
 
 def test_view_is_plain_data_with_raw_text() -> None:
@@ -105,3 +107,14 @@ def test_latex_document_is_complete_and_deterministic() -> None:
     assert r"\pdftrailerid{}" in tex  # no random document ID in the PDF
     assert r"\boxed{" in tex and r"\begin{bmatrix}" in tex
     assert render_latex(d) == tex
+
+
+def test_the_specs_significant_figures_set_every_decimal() -> None:
+    import dataclasses
+
+    from tutgen.render.printer import TexPrinter
+
+    system = solved(str(P05))[0]
+    assert TexPrinter(system)(sp.Float(2.94337)) == "2.943"  # the default, 4
+    three = dataclasses.replace(system, significant_figures=3)
+    assert TexPrinter(three)(sp.Float(2.94337) * sp.Symbol("x")) == "2.94 x"

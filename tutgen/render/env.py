@@ -25,8 +25,7 @@ import jinja2.sandbox
 from jinja2.loaders import split_template_path
 
 from tutgen.errors import UsageError
-from tutgen.render.latex import latex_escape
-from tutgen.render.markdown import md_escape
+from tutgen.render.escape import latex_escape, md_escape
 
 #: The largest template file a user's --template-dir may hold.
 MAX_TEMPLATE_BYTES = 1024 * 1024

@@ -5,17 +5,12 @@ from __future__ import annotations
 from pathlib import Path
 
 from tutgen.engine.derivation import Derivation
+from tutgen.render.env import markdown_env
+from tutgen.render.escape import md_escape
+from tutgen.render.views import solution_view
 
-_MD_SPECIALS = str.maketrans({c: "\\" + c for c in "\\`*_{}[]<>#|$"})
-
-
-def md_escape(text: str) -> str:
-    """User text in Markdown: no markup, no maths, no HTML from it."""
-    return text.translate(_MD_SPECIALS)
+__all__ = ["md_escape", "render_markdown"]
 
 
 def render_markdown(d: Derivation, template_dir: Path | None = None) -> str:
-    from tutgen.render.env import markdown_env
-    from tutgen.render.views import solution_view
-
     return markdown_env(template_dir).get_template("solution.md.j2").render(**solution_view(d))

@@ -10,12 +10,17 @@ Blocks, the items of ``section.blocks``:
 - ``{"kind": "text", "parts": [...]}``: a paragraph; each part is ``{"kind": "text", "text": ...}``
   (plain), ``{"kind": "strong", "text": ...}`` (bold) or ``{"kind": "math", "tex": ...}`` (inline maths);
 - ``{"kind": "subheading", "text": ...}``: a short bold lead-in, e.g. a body's name;
-- ``{"kind": "math", "tex": ..., "lines": [...]}``: displayed maths; ``lines`` are the equations of a
-  list ``a = …,\\quad b = …`` one by one, and ``stack`` is true when ``tex`` is too wide for one
-  line, for a template that then stacks them;
-- ``{"kind": "boxed", "tex": ..., "lines": [...]}``: a displayed final answer, set apart.
+- ``{"kind": "math", "tex": ..., "lines": [...], "rows": [...]}``: displayed maths; ``tex`` is the
+  display on one line, ``lines`` are the equations of a list ``a = …,\\quad b = …`` one by one, and
+  ``rows`` is empty when ``tex`` fits the line, else the rows of one alignment that the template sets
+  in ``align*`` (LaTeX) or ``aligned`` (Markdown): each row has one ``&``, before its relation sign
+  (the line breaking of tutgen.render.layout; nothing is ever scaled to fit);
+- ``{"kind": "boxed", "tex": ..., "lines": [...], "rows": [...]}``: a displayed final answer, set
+  apart (its rows are laid out a little narrower, for the box).
 
-``section.intro``, each item of ``given`` and of ``coordinates`` are lists of parts as above.
+``remarks`` and ``checks`` (tutgen's own sentences, maths typeset), ``section.intro``,
+``statement_parts`` (the statement, its ``$…$`` maths typeset) and each item of ``given`` and of
+``coordinates`` are lists of parts as above; ``statement`` is the raw text.
 """
 
 from __future__ import annotations
@@ -28,7 +33,10 @@ from tutgen.engine.derivation import Derivation
 from tutgen.engine.newton_euler import PROJECTION_REMARK, NEMethod, NewtonEuler
 from tutgen.figure.view import figure_view
 from tutgen.model.system import Ask, Coordinate, System
-from tutgen.render.latex import LINE_WIDTH, TexPrinter, visible_length
+from tutgen.model.text import MathSpan, RichText
+from tutgen.render.layout import BOXED_WIDTH_PT, LINE_WIDTH_PT, layout
+from tutgen.render.printer import TexPrinter
+from tutgen.render.wording import engine_parts
 from tutgen.spec.units import decimal_text, in_unit
 
 Part = dict[str, str]
@@ -54,6 +62,34 @@ def prose(s: str) -> list[Part]:
         if piece:
             parts.append(math(piece) if i % 2 else text(piece))
     return parts
+
+
+def rich(value: str, tex: TexPrinter, before: str = "", after: str = "") -> list[Part]:
+    """A reader's text from the spec (a statement, a description) as parts: a :class:`RichText`'s
+    ``$…$`` spans typeset by the results' printer, its text parts (and a plain ``str``) kept as text for
+    the template to escape. ``before``/``after`` are wording of tutgen's own around it."""
+    parts: list[Part] = [text(before)] if before else []
+    for piece in value.parts if isinstance(value, RichText) else (value,):
+        if isinstance(piece, MathSpan):
+            printed = [tex(t) for t in piece.terms]
+            chain = printed[0]
+            for rel, term in zip(piece.relations, printed[1:], strict=True):
+                chain += f" {_RELATION_TEX.get(rel, rel)} {term}"
+            parts.append(math(chain))
+        elif piece:
+            parts.append(text(piece))
+    if after:
+        parts.append(text(after))
+    merged: list[Part] = []
+    for part in parts:  # neighbouring text parts as one
+        if merged and part["kind"] == merged[-1]["kind"] == "text":
+            merged[-1] = text(merged[-1]["text"] + part["text"])
+        else:
+            merged.append(part)
+    return merged
+
+
+_RELATION_TEX = {"!=": "\\ne", "<=": "\\le", ">=": "\\ge"}
 
 
 def para(*parts: Part | list[Part]) -> Block:
@@ -85,9 +121,17 @@ def split_list(tex: str) -> list[str]:
     return [ln.strip() for ln in lines]
 
 
-def display(tex: str, kind: str = "math") -> Block:
+def display(tex: str, kind: str = "math", stack: bool = False) -> Block:
+    """A displayed formula (or a list of equations joined by ``,\\quad``), laid out to the line width;
+    ``stack`` sets the equations one a line, relation signs aligned, even when they would fit on one."""
     lines = split_list(tex)
-    return {"kind": kind, "tex": tex, "lines": lines, "stack": len(lines) > 1 and visible_length(tex) > LINE_WIDTH}
+    width = BOXED_WIDTH_PT if kind == "boxed" else LINE_WIDTH_PT
+    return {"kind": kind, "tex": tex, "lines": lines, "rows": layout(lines, width, stack=stack)}
+
+
+def stacked(equations: list[str]) -> Block:
+    """Equations one a line, their relation signs aligned (a derivation's steps, a program)."""
+    return display(",\\quad ".join(equations), stack=True)
 
 
 def boxed(tex: str) -> Block:
@@ -132,7 +176,6 @@ PRINT_BUDGET = 4000
 #: beyond this many operations even entry by entry is unreadable (the fully symbolic PUMA: 180 000);
 #: a serial arm's H, C and G are then printed as the recursive program that computes them
 PROGRAM_BUDGET = 40000
-PROGRAM_CHUNK = 24  # definitions per display (an aligned block cannot break across a page)
 
 
 def _ops(*exprs: Any) -> int:
@@ -156,13 +199,19 @@ def given_items(system: System) -> list[list[Part]]:
             shown = decimal_text(number) if number.is_Rational else tex(number)
             item = [math(f"{p.latex} = {shown}{_unit(p.unit) if p.unit else ''}")]
             if p.description:
-                item.append(text(f" ({p.description})"))
+                item += rich(p.description, tex, " (", ")")
         else:
             item = [math(p.latex)]
             if p.description:
-                item.append(text(f": {p.description}"))
+                item += rich(p.description, tex, ": ")
         items.append(item)
     return items
+
+
+def coordinate_items(system: System) -> list[list[Part]]:
+    """Each generalized coordinate with its description."""
+    tex = TexPrinter(system)
+    return [[math(c.latex)] + (rich(c.description, tex, ": ") if c.description else []) for c in system.coordinates]
 
 
 def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
@@ -180,7 +229,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
     sections: list[dict[str, Any]] = []
 
     given = given_items(s)
-    coords = [[math(c.latex)] + ([text(f": {c.description}")] if c.description else []) for c in s.coordinates]
+    coords = coordinate_items(s)
 
     if Ask.INERTIA in s.ask and d.inertia:
         sec = section(
@@ -269,11 +318,13 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
             qd = tex(c.qd)
             sec["blocks"].append(para(text("Coordinate "), math(c.latex), text(":")))
             sec["blocks"].append(
-                display(
-                    f"\\begin{{aligned}}\\frac{{\\partial L}}{{\\partial {qd}}} &= {tex(num(t.dL_dqd))}\\\\ "
-                    f"\\frac{{d}}{{dt}}\\frac{{\\partial L}}{{\\partial {qd}}} &= {tex(num(t.ddt_dL_dqd))}\\\\ "
-                    f"\\frac{{\\partial L}}{{\\partial {c.latex}}} &= {tex(num(t.dL_dq))}\\\\ "
-                    f"Q_{{{c.latex}}} &= {tex(num(t.generalized_force))}\\end{{aligned}}"
+                stacked(
+                    [
+                        f"\\frac{{\\partial L}}{{\\partial {qd}}} = {tex(num(t.dL_dqd))}",
+                        f"\\frac{{d}}{{dt}}\\frac{{\\partial L}}{{\\partial {qd}}} = {tex(num(t.ddt_dL_dqd))}",
+                        f"\\frac{{\\partial L}}{{\\partial {c.latex}}} = {tex(num(t.dL_dq))}",
+                        f"Q_{{{c.latex}}} = {tex(num(t.generalized_force))}",
+                    ]
                 )
             )
         sections.append(sec)
@@ -291,8 +342,8 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
     elif d.equations_of_motion is not None and Ask.EQUATIONS_OF_MOTION in s.ask:
         sec = section("Equations of motion")
         for eq, force in zip(d.equations_of_motion, d.generalized_forces, strict=True):
-            lhs = num(eq + force)
-            sec["blocks"].append(boxed(tex.equation("", lhs, tex(num(force)))))
+            lhs = num(eq + force)  # the equation's side without the inputs, which stand on the right
+            sec["blocks"].append(boxed(f"{tex.ordered(lhs)} = {tex(num(force))}"))
         sections.append(sec)
 
     if d.mass_matrix is not None and (Ask.MATRIX_FORM in s.ask or Ask.CHRISTOFFEL in s.ask):
@@ -357,15 +408,20 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
     return {
         "title": s.title,
         "statement": s.statement or "",
+        "statement_parts": rich(s.statement or "", tex),
         "given": given,
         "coordinates": coords,
         "sections": sections,
         "figure": figure_view(s),  # tutgen/figure/view.py: the schematic (TikZ, SVG name) or the spec's picture
-        "remarks": list(d.remarks),
+        # tutgen's own sentences, their ASCII maths (q_ddot, theta1, H = H^T) typeset
+        "remarks": [engine_parts(r, tex) for r in d.remarks],
         "checks": [
-            c.detail
-            if c.detail.startswith("dimensions not checked")
-            else f"{c.detail}: {'passed' if c.passed else 'FAILED'}"
+            engine_parts(
+                c.detail
+                if c.detail.startswith("dimensions not checked")
+                else f"{c.detail}: {'passed' if c.passed else 'FAILED'}",
+                tex,
+            )
             for c in d.checks
         ],
     }
@@ -461,16 +517,16 @@ def _newton_euler_section(
         if b.joint_in is None:  # no named reactions: what is left is balanced by the constraint forces
             blocks.append(
                 display(
-                    f"\\textstyle\\sum \\mathbf F - m\\mathbf a_G = {tex(num(b.force_balance))} = -\\mathbf F_c,"
-                    f"\\quad \\sum \\mathbf M_G - (I_G\\alpha + \\omega\\times I_G\\omega) = "
+                    f"{{\\textstyle\\sum}} \\mathbf F - m\\mathbf a_G = {tex(num(b.force_balance))} = -\\mathbf F_c,"
+                    f"\\quad {{\\textstyle\\sum}} \\mathbf M_G - (I_G\\alpha + \\omega\\times I_G\\omega) = "
                     f"{tex(num(b.moment_balance))} = -\\mathbf M_c"
                 )
             )
         else:
             blocks.append(
                 display(
-                    f"\\textstyle\\sum \\mathbf F = {tex(num(b.force_balance))} = \\mathbf 0,\\quad "
-                    f"\\sum \\mathbf M = {tex(num(b.moment_balance))} = \\mathbf 0"
+                    f"{{\\textstyle\\sum}} \\mathbf F = {tex(num(b.force_balance))} = \\mathbf 0,\\quad "
+                    f"{{\\textstyle\\sum}} \\mathbf M = {tex(num(b.moment_balance))} = \\mathbf 0"
                 )
             )
     if ne.reactions:
@@ -491,14 +547,14 @@ def _newton_euler_section(
         else:
             qd = tex(next(c.qd for c in coordinates if c.name == e.coordinate))
             lhs = (
-                f"\\textstyle\\sum_b \\big[(m\\mathbf a_G - \\mathbf F)\\cdot\\frac{{\\partial \\mathbf v}}"
+                f"{{\\textstyle\\sum_b}} \\big[(m\\mathbf a_G - \\mathbf F)\\cdot\\frac{{\\partial \\mathbf v}}"
                 f"{{\\partial {qd}}} + (I_G\\alpha + \\omega\\times I_G\\omega - \\mathbf M)\\cdot"
                 f"\\frac{{\\partial \\omega}}{{\\partial {qd}}}\\big]"
             )
         blocks.append(display(f"{lhs} = {tex(num(e.projection))} = {tex(num(e.generalized_force))}"))
-    blocks += [para(text(r)) for r in ne.remarks if r != PROJECTION_REMARK]  # the intro said it
+    blocks += [para(engine_parts(r, tex)) for r in ne.remarks if r != PROJECTION_REMARK]  # the intro said it
     if ne.agrees_with_lagrange:
-        blocks.append(para(text(ne.agreement.detail + ".")))
+        blocks.append(para(engine_parts(ne.agreement.detail + ".", tex)))
     return sec
 
 
@@ -564,18 +620,17 @@ def _program_blocks(d: Derivation, tex: TexPrinter, numeric: Any, size: int, wit
             )
         )
     ]
-    for start in range(0, len(needed), PROGRAM_CHUNK):
-        lines = [f"{tex(x)} &= {tex(num(e))}" for x, e in needed[start : start + PROGRAM_CHUNK]]
-        blocks.append(display("\\begin{aligned}" + " \\\\ ".join(lines) + "\\end{aligned}"))
+    # one alignment each (align* breaks across pages between its rows, under \\allowdisplaybreaks)
+    blocks.append(stacked([f"{tex(x)} = {tex(num(e))}" for x, e in needed]))
     blocks.append(para(prose("$H$ is symmetric, $H_{ji} = H_{ij}$; its entries on and above the diagonal:")))
-    h_lines = [f"H_{{{i + 1}{j + 1}}} &= {tex(num(program.mass_matrix[i, j]))}" for i in range(n) for j in range(i, n)]
-    for start in range(0, len(h_lines), PROGRAM_CHUNK):
-        blocks.append(
-            display("\\begin{aligned}" + " \\\\ ".join(h_lines[start : start + PROGRAM_CHUNK]) + "\\end{aligned}")
+    blocks.append(
+        stacked(
+            [f"H_{{{i + 1}{j + 1}}} = {tex(num(program.mass_matrix[i, j]))}" for i in range(n) for j in range(i, n)]
         )
+    )
     if with_c_g:
-        lines = [f"C_{{{i + 1}}} &= {tex(num(program.coriolis_vector[i]))}" for i in range(n)]
-        lines += [f"G_{{{i + 1}}} &= {tex(num(program.gravity_vector[i]))}" for i in range(n)]
-        lines += [f"Q_{{{i + 1}}} &= {tex(num(d.generalized_forces[i]))}" for i in range(n)]
-        blocks.append(display("\\begin{aligned}" + " \\\\ ".join(lines) + "\\end{aligned}"))
+        lines = [f"C_{{{i + 1}}} = {tex(num(program.coriolis_vector[i]))}" for i in range(n)]
+        lines += [f"G_{{{i + 1}}} = {tex(num(program.gravity_vector[i]))}" for i in range(n)]
+        lines += [f"Q_{{{i + 1}}} = {tex(num(d.generalized_forces[i]))}" for i in range(n)]
+        blocks.append(stacked(lines))
     return blocks

@@ -5,8 +5,9 @@ The template context of a sheet (templates/{markdown,latex}/sheet-*.j2), plain d
 - ``title``, ``course``, ``date``, ``label`` (the variant's label or the student's name; may be empty),
   ``kind`` (set by the template: "questions" or "worked solutions");
 - ``problems``: one mapping per problem, in sheet order, with ``number``, ``title``, ``statement``,
-  ``given`` and ``coordinates`` (lists of parts, as in tutgen/render/views.py), ``asked`` (texts),
-  ``figure`` (the problem's figure, as in tutgen/figure/view.py), and
+  ``statement_parts``, ``given`` and ``coordinates`` (lists of parts, as in tutgen/render/views.py; the
+  statement's ``$…$`` maths typeset), ``asked`` (texts) and ``asked_parts`` (the same as lists of
+  parts, maths typeset), ``figure`` (the problem's figure, as in tutgen/figure/view.py), and
   ``solution``: the worked solution's context from :func:`tutgen.render.views.solution_view`
   (``sections``, ``remarks``, ``checks``).
 
@@ -20,9 +21,10 @@ from typing import Any
 
 from tutgen.engine.derivation import Derivation
 from tutgen.model.system import Ask
-from tutgen.render.views import given_items
+from tutgen.render.printer import TexPrinter
+from tutgen.render.views import coordinate_items, given_items, prose, rich
 
-#: What each item of a spec's ``ask`` asks for, as a question sheet words it.
+#: What each item of a spec's ``ask`` asks for, as a question sheet words it (maths between ``$``, LaTeX).
 ASKED = {
     Ask.INERTIA: "the mass, centre of mass and inertia tensor of each body",
     Ask.KINETIC_ENERGY: "the kinetic energy",
@@ -30,7 +32,7 @@ ASKED = {
     Ask.LAGRANGIAN: "the Lagrangian",
     Ask.LAGRANGE_EQUATIONS: "Lagrange's equations, term by term",
     Ask.EQUATIONS_OF_MOTION: "the equations of motion",
-    Ask.MATRIX_FORM: "the matrix form H(q) q'' + C(q, q') + G(q) = Q",
+    Ask.MATRIX_FORM: "the matrix form $H(q)\\ddot q + C(q,\\dot q) + G(q) = Q$",
     Ask.CHRISTOFFEL: "the Christoffel symbols",
 }
 
@@ -41,21 +43,21 @@ def problem_view(number: int, derivation: Derivation, solution: bool) -> dict[st
 
     s = derivation.system
     view = solution_view(derivation, decimals=True) if solution else None
-    coords = [
-        [{"kind": "math", "tex": c.latex}] + ([{"kind": "text", "text": f": {c.description}"}] if c.description else [])
-        for c in s.coordinates
-    ]
-    asked = [ASKED[a] for a in Ask if a in s.ask]
-    if asked:  # a sentence: "Asked. The kinetic energy; the potential energy."
-        asked[0] = asked[0][:1].upper() + asked[0][1:]
+    coords = coordinate_items(s)
+    asked_text = [ASKED[a] for a in Ask if a in s.ask]
+    if asked_text:  # a sentence: "Asked. The kinetic energy; the potential energy."
+        asked_text[0] = asked_text[0][:1].upper() + asked_text[0][1:]
+    asked = [a.replace("$", "") for a in asked_text]  # the plain wording (maths as LaTeX source)
     return {
         "number": number,
         "title": s.title,
         "statement": s.statement or "",
+        "statement_parts": rich(s.statement or "", TexPrinter(s)),
         "given": given_items(s),
         "coordinates": coords,
         "asked": asked,
         "figure": _figure(s),  # tutgen/figure/view.py: the LaTeX sheets set it beside the problem
+        "asked_parts": [prose(a) for a in asked_text],
         "solution": {
             "sections": view["sections"] if view else [],
             "remarks": view["remarks"] if view else [],

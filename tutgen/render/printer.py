@@ -1,0 +1,194 @@
+"""Printing sympy results as LaTeX the way a person writes them: dotted rates, Greek names,
+``\\sin\\theta`` rather than ``\\sin{\\left(\\theta \\right)}``, four significant figures."""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Any, ClassVar
+
+import sympy as sp
+from sympy.printing.latex import LatexPrinter
+
+from tutgen.model.system import System
+from tutgen.render import order
+
+SIGNIFICANT_FIGURES = 4
+#: sums up to this many operations are printed in a teacher's order (collecting a bigger one costs more
+#: than it helps: it is printed entry by entry or as a program anyway)
+ORDER_BUDGET = 600
+
+
+def format_number(x: float, figures: int = SIGNIFICANT_FIGURES) -> str:
+    """A number as an engineer writes it: ``figures`` significant figures (trailing zeros dropped), as a
+    decimal from 0.001 up to 9999, beyond that in engineering notation, a mantissa from 1 to 999 and an
+    exponent that is a multiple of 3 (``375 \\times 10^{-6}``, ``123.5 \\times 10^{3}``): one style for every
+    number of a document, so that ``0.007891`` stands beside ``0.01899``."""
+    if x == 0 or not math.isfinite(x):
+        return "0" if x == 0 else str(x)
+    rounded = float(f"{x:.{figures - 1}e}")  # rounding first: 9.99996 is 10.00, with its exponent
+    exponent = math.floor(math.log10(abs(rounded)))
+    if -3 <= exponent <= 3:
+        decimals = max(figures - 1 - exponent, 0)
+        return _trim(f"{rounded:.{decimals}f}")
+    engineering = 3 * (exponent // 3)
+    decimals = max(figures - 1 - (exponent - engineering), 0)
+    return f"{_trim(f'{rounded / 10**engineering:.{decimals}f}')} \\times 10^{{{engineering}}}"
+
+
+def _trim(text: str) -> str:
+    if "." in text:
+        text = text.rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+class _Printer(LatexPrinter):
+    """sympy's LaTeX printer with tutgen's numbers and, given the ``roles`` of the symbols, a teacher's
+    order of the factors of a product and positive-lead brackets (tutgen.render.order)."""
+
+    _default_settings: ClassVar[dict[str, Any]] = {
+        **LatexPrinter._default_settings,
+        "roles": None,
+        "figures": SIGNIFICANT_FIGURES,
+    }
+
+    def _print_Float(self, expr: sp.Float) -> str:
+        return format_number(float(expr), self._settings["figures"])
+
+    def _print_Add(self, expr: sp.Add, order: str | None = None) -> str:
+        """The terms of a sum in sympy's lex order (an ordered equation is printed term by term instead),
+        each term's sign as printed: a product whose bracket gave up its minus sign prints a minus."""
+        out = ""
+        for i, term in enumerate(self._as_ordered_terms(expr, order="lex")):
+            piece = str(self._print(term))
+            if self._needs_add_brackets(term):
+                piece = f"\\left({piece}\\right)"
+            negative = piece.startswith("-")
+            if negative:
+                piece = piece[1:].lstrip()
+            if i == 0:
+                out = ("- " if negative else "") + piece
+            else:
+                out += (" - " if negative else " + ") + piece
+        return out
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        """No ``1.0 x``: a unit float coefficient is left out. (Replacing it by 1 in the expression
+        does not stick: sympy caches and compares Float(1.0) and 1 as the same.) With roles, the
+        factors in a teacher's order, a bracket's minus sign taken outside, ``\\tfrac12`` in front."""
+        coeff, rest = expr.as_coeff_Mul()
+        if isinstance(coeff, sp.Float) and abs(float(coeff)) == 1.0 and rest != 1:
+            body = self._print(rest)
+            return body if float(coeff) > 0 else "- " + body
+        roles = self._settings["roles"]
+        if roles is None or rest == 1:
+            return str(super()._print_Mul(expr))
+        sign = -1 if coeff.is_negative else 1
+        coeff = abs(coeff)
+        factors: list[sp.Basic] = []
+        for f in sp.Mul.make_args(rest):
+            if isinstance(f, sp.Add) and f.could_extract_minus_sign():
+                f, sign = -f, -sign
+            factors.append(f)
+        factors.sort(key=lambda f: (order.factor_role(f, roles), sp.default_sort_key(f)))
+        head = ""
+        if coeff.is_Rational and not coeff.is_Integer and coeff.q <= 12 and abs(coeff.p) <= 12:
+            if not any(f.is_Pow and f.exp.is_negative for f in factors):
+                head, coeff = f"\\tfrac{{{coeff.p}}}{{{coeff.q}}} ", sp.S.One
+        lead = [coeff] if coeff != 1 else []
+        body = sp.Mul(*lead, *factors, evaluate=False) if len(factors) > 1 or lead else factors[0]
+        saved = self._settings["order"]
+        self._settings["order"] = "none"
+        try:
+            text = self._print(body) if not isinstance(body, sp.Mul) else str(super()._print_Mul(body))
+        finally:
+            self._settings["order"] = saved
+        return ("- " if sign < 0 else "") + head + text
+
+
+_TRIG = re.compile(r"\\(sin|cos|tan|cot|sec|csc)(\^\{[^{}]*\})?\{\\left\(")
+_ATOM = re.compile(r"^(\\[A-Za-z]+|[A-Za-z])(_\{[A-Za-z0-9]+\}|_[A-Za-z0-9])?$")
+
+
+def tidy_functions(tex: str) -> str:
+    """``\\sin{\\left(\\theta \\right)}`` -> ``\\sin\\theta``; a longer argument keeps plain parentheses:
+    ``\\cos{\\left(\\theta_{1} + \\theta_{2} \\right)}`` -> ``\\cos(\\theta_{1} + \\theta_{2})``."""
+    out: list[str] = []
+    pos = 0
+    while (m := _TRIG.search(tex, pos)) is not None:
+        # the argument runs to the brace that closes the one opened before \left(
+        depth, i = 1, m.end()
+        while i < len(tex) and depth:
+            depth += {"{": 1, "}": -1}.get(tex[i], 0) if tex[i - 1] != "\\" else 0
+            i += 1
+        inner = tex[m.end() : i - 1]
+        if not inner.endswith("\\right)"):
+            out.append(tex[pos : m.end()])
+            pos = m.end()
+            continue
+        arg = tidy_functions(inner[: -len("\\right)")].strip())
+        head = f"\\{m.group(1)}{m.group(2) or ''}"
+        if _ATOM.match(arg):
+            out.append(tex[pos : m.start()] + head + ("" if arg.startswith("\\") else " ") + arg)
+            if re.match(r" +(?![-+=&)},]|\\(right|end|quad|cdot|times|Bigr|bigr)\b|\\\\)", tex[i:]):
+                out.append("\\,")  # cos θ θ̈, not cos θθ̈: a thin space before the next factor
+        else:
+            out.append(tex[pos : m.start()] + f"{head}({arg})")
+        pos = i
+    out.append(tex[pos:])
+    return "".join(out)
+
+
+class TexPrinter:
+    """sympy's LaTeX printer with the spec's symbol names: theta1_dot -> \\dot{\\theta}_{1}."""
+
+    def __init__(self, system: System) -> None:
+        names: dict[sp.Symbol, str] = {}
+        for p in system.parameters:
+            names[p.symbol] = p.latex
+        for c in system.coordinates:
+            names[c.q] = c.latex
+            names[c.qd] = _dotted(c.latex, r"\dot")
+            names[c.qdd] = _dotted(c.latex, r"\ddot")
+        self.names = names
+        self.system = system
+        self.roles = order.symbol_roles(system)
+        #: the spec's significant figures for decimals (None in the spec: the default, 4)
+        self.figures = getattr(system, "significant_figures", None) or SIGNIFICANT_FIGURES
+
+    def __call__(self, expr: object) -> str:
+        if isinstance(expr, sp.MatrixBase):
+            rows = [" & ".join(self(e) for e in expr.row(i)) for i in range(expr.rows)]
+            return r"\begin{bmatrix}" + r" \\ ".join(rows) + r"\end{bmatrix}"
+        if isinstance(expr, float):
+            expr = sp.Float(expr)
+        settings = {"symbol_names": self.names, "roles": self.roles, "figures": self.figures}
+        return tidy_functions(_Printer(settings).doprint(expr))
+
+    def ordered(self, expr: sp.Expr) -> str:
+        """An equation of motion's side as a teacher writes it (tutgen.render.order.equation_terms):
+        accelerations in coordinate order, velocity products, the rest; each bracket with a positive lead."""
+        found = order.equation_terms(expr, self.system) if isinstance(expr, sp.Expr) else None
+        if not found:
+            return self(expr)
+        pieces: list[str] = []
+        for sign, body in found:
+            text = self(body)
+            if text.startswith("- "):  # a body printed with its own minus (a negative number factor)
+                sign, text = -sign, text[2:]
+            pieces.append(("- " if sign < 0 else ("+ " if pieces else "")) + text)
+        return " ".join(pieces)
+
+    def equation(self, lhs: str, expr: object, rhs: str = "") -> str:
+        """``lhs = expr`` (or ``expr = rhs`` when ``lhs`` is empty) on one line: where it breaks when it is
+        too wide is decided by its typeset width when the display is laid out (tutgen.render.layout)."""
+        head = f"{lhs} = " if lhs else ""
+        tail = f" = {rhs}" if rhs else ""
+        small = isinstance(expr, sp.Expr) and sp.count_ops(expr) <= ORDER_BUDGET
+        return f"{head}{self.ordered(expr) if small else self(expr)}{tail}"
+
+
+def _dotted(latex: str, accent: str) -> str:
+    """Put the dot on the base letter, not on the subscript: \\theta_{1} -> \\dot{\\theta}_{1}."""
+    base, sep, sub = latex.partition("_")
+    return f"{accent}{{{base}}}{sep}{sub}"
