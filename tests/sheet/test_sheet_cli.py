@@ -65,7 +65,32 @@ def test_sheet_writes_the_documented_layout(small: tuple[Path, Path]) -> None:
             assert f"variants/{v}/key-{p}.yaml" in names
         for doc in ("questions.md", "questions.tex", "solutions.md", "solutions.tex"):
             assert f"variants/{v}/{doc}" in names
-    assert len(names) == 4 + 1 + 3 * (3 * 2 + 4)
+    figures = {f"figures/{p}.svg" for p in ("p03-cart-pendulum", "p06-two-prismatic", "p10-given-kinetic-energy")}
+    assert figures <= names
+    assert len(names) == 4 + 3 + 1 + 3 * (3 * 2 + 4 + 3)
+
+
+def test_markdown_sheets_show_each_problems_figure_beside_it(small: tuple[Path, Path]) -> None:
+    """Every Markdown sheet, the nominal one and each variant's, refers to its problems' SVGs by relative
+    paths that exist beside it."""
+    import re
+
+    _, out = small
+    drawn: dict[str, set[bytes]] = {}
+    for sheet in [out / "questions.md", out / "solutions.md", *sorted(out.glob("variants/*/*.md"))]:
+        links = re.findall(r"!\[Figure: [^]]*\]\(<([^>]+)>\)", sheet.read_text(encoding="utf-8"))
+        assert [Path(link).stem for link in links] == [
+            "p03-cart-pendulum",
+            "p06-two-prismatic",
+            "p10-given-kinetic-energy",
+        ]
+        for link in links:
+            svg = (sheet.parent / link).read_bytes()
+            assert svg.startswith(b"<svg") or b"<svg" in svg[:200]
+            drawn.setdefault(link, set()).add(svg)
+    assert set(drawn) == {
+        f"figures/{p}.svg" for p in ("p03-cart-pendulum", "p06-two-prismatic", "p10-given-kinetic-energy")
+    }
 
 
 def test_sheet_questions_and_solutions_show_the_variants_numbers(small: tuple[Path, Path]) -> None:

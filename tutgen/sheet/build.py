@@ -148,6 +148,7 @@ def build_job(shared: Shared, job: Job) -> JobResult:
     t_derive = 0.0
     start = time.perf_counter()
     views: list[dict[str, Any]] = []
+    systems: list[Any] = []  # each problem's system as set (a variant's numbers), for its figure
     files: list[tuple[str, str | bytes]] = []
     values_out: list[tuple[str, str, str]] = []
     rederived: list[str] = []
@@ -167,11 +168,12 @@ def build_job(shared: Shared, job: Job) -> JobResult:
                 if fresh:
                     t_derive += time.perf_counter() - t0
                 view = problem_view(base.number, d, solution=True)
-                _memo[memo_key] = (view, key_results(d), concrete, fresh)
-            view, results, concrete, fresh = _memo[memo_key]
+                _memo[memo_key] = (view, key_results(d), concrete, fresh, d.system)
+            view, results, concrete, fresh, system = _memo[memo_key]
             if fresh:
                 rederived.append(base.key)
             views.append(view)
+            systems.append(system)
             params = {p.name: p for p in base.derivation.system.parameters}
             values_out += [(base.key, n, quantity_text(params[n], v)) for n, v in values.items()]
             files.append((f"{prefix}specs/{base.key}.yaml", concrete))
@@ -180,12 +182,15 @@ def build_job(shared: Shared, job: Job) -> JobResult:
     else:
         derivations = [substituted(b.derivation, b.derivation.system) for b in shared.problems]
         views = [problem_view(b.number, d, solution=True) for b, d in zip(shared.problems, derivations, strict=True)]
+        systems = [d.system for d in derivations]
+    figures = _figures(shared, systems) if "md" in shared.formats else {}
     context = {**header, "problems": views}
     for kind in ("questions", "solutions"):
         tex = None
         for fmt in shared.formats:
             if fmt == "md":
-                files.append((f"{prefix}{kind}.md", render_sheet(context, kind, "md")))
+                md_views = [_md_figure(v, figures.get(b.key)) for b, v in zip(shared.problems, views, strict=True)]
+                files.append((f"{prefix}{kind}.md", render_sheet({**context, "problems": md_views}, kind, "md")))
             else:
                 tex = tex if tex is not None else render_sheet(context, kind, "tex")
                 if fmt == "tex":
@@ -194,8 +199,38 @@ def build_job(shared: Shared, job: Job) -> JobResult:
                     from tutgen.render.pdf import compile_pdf
 
                     files.append((f"{prefix}{kind}.pdf", compile_pdf(tex)))
+    files += [(f"{prefix}{name}", svg) for name, svg in figures.values()]
     total = time.perf_counter() - start
     return JobResult(tuple(files), tuple(values_out), tuple(rederived), t_derive, total - t_derive)
+
+
+def figure_name(key: str) -> str:
+    """Where a Markdown sheet's figure of problem ``key`` is written, relative to the sheet."""
+    return f"figures/{key}.svg"
+
+
+def has_figure(system: Any) -> bool:
+    """Whether the problem gets a generated figure (``figure: {generated: false}`` turns it off)."""
+    return system.figure is None or system.figure.generated
+
+
+def _figures(shared: Shared, systems: Sequence[Any]) -> dict[str, tuple[str, str]]:
+    """Problem key -> (file name, SVG) of the figures a Markdown sheet shows beside its problems."""
+    from tutgen.figure.view import svg_file
+
+    out: dict[str, tuple[str, str]] = {}
+    for base, system in zip(shared.problems, systems, strict=True):
+        made = svg_file(system) if has_figure(system) else None
+        if made is not None:
+            out[base.key] = (figure_name(base.key), made[1])
+    return out
+
+
+def _md_figure(view: dict[str, Any], figure: tuple[str, str] | None) -> dict[str, Any]:
+    """A problem's view for a Markdown sheet: its figure by the sheet's own relative path. The spec's own
+    picture (``figure.file``) is relative to the spec, not to the sheet, so it is left to the LaTeX sheets."""
+    shown = {**view["figure"], "generated": figure is not None, "svg": figure[0] if figure else "", "file_md": False}
+    return {**view, "figure": shown}
 
 
 def derive_problems(
@@ -271,12 +306,14 @@ def _index(variants: Sequence[Variant], results: Sequence[JobResult]) -> str:
 def file_names(sheet: Sheet, variants: Sequence[Variant], formats: Sequence[str]) -> list[str]:
     """The files :func:`build_sheet` makes, in its order (known before anything is derived)."""
     fmts = [f for f in FORMATS if f in formats]
-    names = [f"{kind}.{fmt}" for kind in ("questions", "solutions") for fmt in fmts]
+    figures = [figure_name(p.key) for p in sheet.problems if has_figure(p.system)] if "md" in fmts else []
+    names = [f"{kind}.{fmt}" for kind in ("questions", "solutions") for fmt in fmts] + figures
     for v in variants:
         prefix = f"variants/{v.id}/"
         for p in sheet.problems:
             names += [f"{prefix}specs/{p.key}.yaml", f"{prefix}key-{p.key}.yaml"]
         names += [f"{prefix}{kind}.{fmt}" for kind in ("questions", "solutions") for fmt in fmts]
+        names += [f"{prefix}{name}" for name in figures]
     if variants:
         names.append("variants/index.csv")
     return names

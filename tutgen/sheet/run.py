@@ -33,8 +33,9 @@ from tutgen.errors import SpecError, SpecErrors, UsageError
 from tutgen.sheet.model import WINDOWS_DEVICES, Sheet
 from tutgen.sheet.variants import Variant
 
-#: What may sit at the top of a sheet's output (anything under ``variants/`` is the sheet's own).
-_OUTPUT_ENTRY = re.compile(r"(?:questions|solutions)(?:[.-][A-Za-z0-9._-]*)?|variants")
+#: What may sit at the top of a sheet's output (anything under ``variants/`` and ``figures/`` is the
+#: sheet's own: the variants, and the SVGs its Markdown sheets show beside the problems).
+_OUTPUT_ENTRY = re.compile(r"(?:questions|solutions)(?:[.-][A-Za-z0-9._-]*)?|variants|figures")
 
 
 @dataclass(frozen=True)
