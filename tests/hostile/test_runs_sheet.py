@@ -118,7 +118,8 @@ def test_runs_sheet_terminal_output_has_no_escape_sequences(runner: Runner) -> N
     name = "out\x1b[2J\x1b]0;pwned\x07"
     done = runner.run("sheet", runner.inputs / "sheet.yaml", "-o", name, "-j", "1")
     assert done.returncode == EXIT_OK, done.stderr
-    assert "\x1b" not in done.stderr and "\x07" not in done.stderr and "wrote 3 files" in done.stderr  # questions, solutions, the figure
+    # three files: the questions, the solutions and the problem's figure
+    assert "\x1b" not in done.stderr and "\x07" not in done.stderr and "wrote 3 files" in done.stderr
     assert_clean(runner, {name})
 
 
