@@ -28,7 +28,7 @@ def test_cli_figure_svg_and_tex(tmp_path: Path) -> None:
     tex = tmp_path / "fig.tex"
     assert runner.invoke(app, ["figure", str(P05), "-o", str(tex)]).exit_code == 0
     text = tex.read_text()
-    assert "\\begin{tikzpicture}" in text and "\\theta_{1}" in text and "\\documentclass" in text
+    assert "\\begin{tikzpicture}" in text and "\\theta_1" in text and "\\documentclass" in text
 
 
 def test_cli_figure_refuses_unknown_suffix_and_existing_file(tmp_path: Path) -> None:
