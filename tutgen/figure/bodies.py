@@ -1,0 +1,167 @@
+"""The drawing of bodies and joints: ground supports, rails and slider blocks, the links' bars and
+pins, and each part by its shape (point masses, rods, spheres, boxes, cylinders)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tutgen.figure.canvas import MASS, PIN, SLIDER, Canvas
+from tutgen.figure.geometry import convex_hull, points_box
+from tutgen.figure.pose import Vec
+from tutgen.figure.scene import Box, Fill, Point, Stroke
+from tutgen.figure.texlabel import expr_tex, word_tex
+from tutgen.model.system import GROUND, Joint, JointKind, Shape
+
+
+class BodyDrawing(Canvas):
+    """Draws the joints and bodies of a system."""
+
+    def draw_joints(self) -> None:
+        pose = self.pose
+        for j in self.s.joints:
+            at = self.P(pose.joint_at[j.name])
+            if j.kind is JointKind.PRISMATIC:
+                self.draw_prismatic(j)
+                continue
+            if j.kind is JointKind.REVOLUTE and j.parent == GROUND:
+                # a ceiling for a body hanging below its pivot, a floor otherwise
+                body = self.s.body(j.child)
+                far = self.far_points(body, pose) + self.part_centres(body, pose)
+                below = [self.P(p)[1] - at[1] for p in far]
+                if self.view == "planar":
+                    self.ground_support(at, hanging=bool(below) and sum(below) < -1e-6 * len(below))
+                else:  # spatial: a base under the joint's axis, clear of the angle's arc
+                    self.ground_support((at[0], at[1] - 0.55))
+
+    def ground_support(self, at: Point, hanging: bool = False) -> None:
+        """A fixed pivot's support: a triangle on a hatched floor, or hung from a ceiling."""
+        x, y = at
+        k = -1.0 if hanging else 1.0  # hanging: mirrored above the pin
+        self.line([(x, y), (x - 0.22, y - 0.34 * k), (x + 0.22, y - 0.34 * k)], Stroke.OUTLINE, Fill.WHITE, closed=True)
+        self.hatch((x - 0.36, y - 0.34 * k), (x + 0.36, y - 0.34 * k), (0.0, -k))
+        self.obstacles.append(Box(x - 0.36, min(y, y - 0.5 * k), x + 0.36, max(y, y - 0.5 * k)))
+
+    def draw_prismatic(self, j: Joint) -> None:
+        pose = self.pose
+        child_pos = pose.frames[j.child][0]
+        base = pose.joint_at[j.name]
+        axis = pose.axis_of[j.name]
+        value = self.num(j.coordinate.q) if j.coordinate else 0.0
+        a, b = self.P(base), self.P(child_pos)
+        d = np.array(self.P(base + axis)) - np.array(a)
+        if np.linalg.norm(d) < 1e-9:  # the axis points at the viewer
+            d = np.array([0.0, 1.0])
+        u = d / np.linalg.norm(d)
+        ext = max(abs(value) * self.scale, 0.0)
+        lo = np.array(a) - u * (0.9 + (ext if value < 0 else 0))
+        hi = np.array(a) + u * ((ext if value > 0 else 0) + 0.9)
+        nrm = np.array([-u[1], u[0]])
+        if nrm[1] > 0 or (abs(nrm[1]) < 1e-9 and nrm[0] > 0):
+            nrm = -nrm  # the rail below (or beside) the slider
+        w, h = SLIDER
+        if j.parent == GROUND:
+            off = nrm * (h / 2 + 0.02)
+            self.hatch(tuple(lo + off), tuple(hi + off), tuple(nrm))
+        else:
+            self.line([tuple(lo), tuple(hi)], Stroke.BAR)
+        c = np.array(b)
+        corners = [c + u * sx * w / 2 + nrm * sy * h / 2 for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+        self.line([tuple(p) for p in corners], Stroke.OUTLINE, Fill.GRAY, closed=True)
+        self.obstacles.append(points_box([tuple(p) for p in corners]))
+        self.sliders[j.child] = (b, (float(u[0]), float(u[1])))
+        body = self.s.body(j.child)
+        if all(p.shape is Shape.POINT for p in body.parts) and body.parts:
+            self.label(f"body:{body.name}", self.body_tex(body), b, tuple(-nrm))  # type: ignore[arg-type]
+        elif not body.parts:
+            self.label(f"body:{body.name}", word_tex(body.name), b, tuple(-nrm))  # type: ignore[arg-type]
+
+    def draw_links(self) -> None:
+        pose = self.pose
+        for j in self.s.joints:
+            if j.kind is not JointKind.PRISMATIC and j.parent != GROUND:
+                pass
+        for b in self.s.bodies:
+            if b.name not in pose.by_child:
+                continue
+            o = pose.frames[b.name][0]
+            j = pose.by_child[b.name]
+            start = pose.joint_at[j.name]
+            if np.linalg.norm(o - start) > 1e-9 and j.kind is not JointKind.PRISMATIC:
+                self.line([self.P(start), self.P(o)], Stroke.BAR)
+            # one bar per direction, to the farthest point: a mass on the way to the next joint sits on it
+            ends: list[Vec] = []  # a rod part is the link itself: no second bar along it
+            for part in b.parts:
+                if part.shape is Shape.ROD:
+                    ends += [p - o for p in self.part_points(b, part, pose) if np.linalg.norm(p - o) > 1e-9]
+            for far in sorted(self.far_points(b, pose), key=lambda p: -float(np.linalg.norm(p - o))):
+                d = far - o
+                if np.linalg.norm(d) * self.scale <= 1e-3:
+                    continue
+                if not any(np.linalg.norm(np.cross(d, e)) < 1e-9 * max(1.0, float(e @ e)) and d @ e > 0 for e in ends):
+                    ends.append(d)
+                    self.line([self.P(o), self.P(far)], Stroke.BAR)
+            for centre in self.part_centres(b, pose):  # a stem to a shape set off the joint (a top)
+                if np.linalg.norm(centre - o) * self.scale > 1e-3:
+                    self.line([self.P(o), self.P(centre)], Stroke.OUTLINE)
+        for j in self.s.joints:
+            if j.kind is JointKind.REVOLUTE:
+                self.circle(self.P(self.pose.joint_at[j.name]), PIN)
+
+    def draw_bodies(self) -> None:
+        pose = self.pose
+        for b in self.s.bodies:
+            composite = len(b.parts) > 1
+            for part in b.parts:
+                at3 = pose.point(b.name, self.num.vec(part.at))
+                at = self.P(at3)
+                name = f"body:{b.name}/{part.name}" if composite else f"body:{b.name}"
+                tex = word_tex(part.name) if composite else self.body_tex(b)
+                if composite and part.mass is not None:
+                    tex = expr_tex(part.mass, self.latex_of) or tex
+                shape = part.shape
+                if shape is Shape.POINT:
+                    if (
+                        b.name in self.sliders
+                        and np.linalg.norm(np.array(at) - np.array(self.sliders[b.name][0])) < 1e-3
+                    ):
+                        continue  # the slider block is the mass
+                    if b.is_simple and part.inertia is not None and any(v != 0 for v in part.inertia):
+                        self.circle(at, MASS + 0.04, Fill.GRAY)
+                    else:
+                        self.circle(at, MASS, Fill.BLACK)
+                    self.label(name, tex, at, self.outward(at))
+                    continue
+                pts = [self.P(p) for p in self.part_points(b, part, pose)]
+                if shape is Shape.ROD:
+                    self.line(pts, Stroke.BAR)
+                    self.label(name, tex, ((pts[0][0] + pts[1][0]) / 2, (pts[0][1] + pts[1][1]) / 2), self.outward(at))
+                    continue
+                if shape in (Shape.SPHERE, Shape.SPHERICAL_SHELL):
+                    r = float(np.linalg.norm(np.array(pts[0]) - np.array(at)))
+                    r = max(r, MASS)
+                    self.circle(at, r, Fill.GRAY)
+                    self.label(name, tex, (at[0] + r * 0.7, at[1] + r * 0.7), (0.7, 0.7))
+                    continue
+                if shape is Shape.GENERAL:
+                    self.circle(at, MASS + 0.05, Fill.GRAY)
+                    self.label(name, tex, at, self.outward(at))
+                    continue
+                hull = convex_hull(pts)
+                self.line(hull, Stroke.OUTLINE, Fill.WHITE, closed=True)
+                if self.view == "oblique" and shape is Shape.BOX:
+                    self.box_edges(pts)
+                elif self.view == "oblique":
+                    self.line(pts[37:], Stroke.OUTLINE)  # the far end's rim
+                    self.line(pts[:37], Stroke.THIN)
+                cx = sum(p[0] for p in hull) / len(hull)
+                cy = sum(p[1] for p in hull) / len(hull)
+                self.label(name, tex, (cx, cy), (0.0, 0.0))
+                self.obstacles.append(points_box([(cx - 0.05, cy - 0.05), (cx + 0.05, cy + 0.05)]))
+
+    def box_edges(self, pts: list[Point]) -> None:
+        # corners are ordered by (a, b, c) in {-1, 1}^3; an edge joins corners differing in one sign
+        for i in range(8):
+            for bit in (1, 2, 4):
+                k = i ^ bit
+                if k > i:
+                    self.line([pts[i], pts[k]], Stroke.THIN)

@@ -1,0 +1,81 @@
+"""Label placement: each label beside what it names, moved round its anchor until it overlaps no
+other label and as few pins, masses and lines as can be (a move is remarked on, never an error)."""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from tutgen.figure.geometry import inside, overlaps
+from tutgen.figure.scene import Box, Circle, Label, Point, Primitive
+from tutgen.figure.texlabel import label_size
+
+#: A label asked for: the names it stands for, its TeX, its anchor, the direction it prefers.
+Request = tuple[str, str, Point, Point]
+
+
+def place_labels(
+    requests: Sequence[Request], obstacles: Sequence[Box], prims: Sequence[Primitive], remarks: list[str]
+) -> list[Label]:
+    """Each label next to its anchor, on the side it asks for when that place is free; otherwise
+    the nearest place (eight directions, four distances) that overlaps no placed label, then the
+    fewest pins and masses, then the fewest lines. A label moved off another label is remarked on."""
+    placed: list[Label] = []
+    ink = ink_points(prims)
+    boxes = np.zeros((0, 4))  # the placed labels' boxes, widened by a small gap
+    obstacle_rows = np.array([[b.x0, b.y0, b.x1, b.y1] for b in obstacles]).reshape(-1, 4)
+    gap = 0.04
+    for names, tex, anchor, direction in requests:
+        w, h = label_size(tex)
+        dx, dy = direction
+        n = math.hypot(dx, dy)
+        base = math.atan2(dy, dx) if n > 1e-9 else math.pi / 4
+        best: tuple[float, Label] | None = None
+        first_clash = 0.0
+        dists = (0.0, 0.25, 0.5, 0.8, 1.2) if n <= 1e-9 else (0.1, 0.3, 0.55, 0.9, 1.3)
+        for i, dist in enumerate(dists):
+            for turn in (0, 1, -1, 2, -2, 3, -3, 4):
+                a = base + turn * math.pi / 4
+                reach = dist + 0.5 * (abs(math.cos(a)) * w + abs(math.sin(a)) * h)
+                if n <= 1e-9 and dist == 0.0:
+                    reach = 0.0
+                at = (round(anchor[0] + math.cos(a) * reach, 3), round(anchor[1] + math.sin(a) * reach, 3))
+                cand = Label(names, tex, at, round(w, 3), round(h, 3))
+                box = cand.box
+                clash = overlaps(box, boxes, gap)
+                if i == 0 and turn == 0:
+                    first_clash = clash
+                cost = 1000 * clash + 10 * overlaps(box, obstacle_rows, 0.0)
+                cost += 0.05 * inside(box, ink) + 0.02 * (i + abs(turn))
+                if best is None or cost < best[0] - 1e-12:
+                    best = (cost, cand)
+            if best is not None and best[0] < 0.3:
+                break
+        assert best is not None
+        final = best[1].box
+        final_clash = overlaps(final, boxes, gap)
+        what = names.replace(":", " ").replace("/", " ")
+        if first_clash > 0 and final_clash == 0:
+            remarks.append(f"the label of {what} was moved off another label")
+        elif final_clash > 0:
+            remarks.append(f"the label of {what} still overlaps another label; no free place was found")
+        placed.append(best[1])
+        boxes = np.vstack([boxes, [final.x0, final.y0, final.x1, final.y1]])
+    return placed
+
+
+def ink_points(prims: Sequence[Primitive]) -> np.ndarray:
+    """Points every 0.08 cm along every line drawn, to keep labels off the lines."""
+    pts: list[tuple[float, float]] = []
+    for prim in prims:
+        if isinstance(prim, Circle):
+            pts.append(prim.center)
+            continue
+        ring = (*prim.points, prim.points[0]) if prim.closed else prim.points
+        for (x0, y0), (x1, y1) in itertools.pairwise(ring):
+            k = max(1, int(math.hypot(x1 - x0, y1 - y0) / 0.08))
+            pts += [(x0 + (x1 - x0) * t / k, y0 + (y1 - y0) * t / k) for t in range(k)]
+    return np.array(pts) if pts else np.zeros((0, 2))
