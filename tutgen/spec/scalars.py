@@ -32,7 +32,6 @@ _INF_RE = re.compile(r"[-+]?\.(?:inf|Inf|INF)")
 _NAN_RE = re.compile(r"\.(?:nan|NaN|NAN)")
 
 
-
 def core_value(text: str) -> Any:
     """Resolve an untagged plain scalar by the YAML 1.2 core schema.
 
