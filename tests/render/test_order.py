@@ -22,33 +22,33 @@ def test_p03_equations_read_as_the_tutorial_prints_them() -> None:
     """Tutorial p03: F = (m_1+m_2)ẍ + m_2 l cos θ θ̈ − m_2 l sin θ θ̇² + kx (inertia, velocity, spring)."""
     first, second = _boxed(P03, "Equations of motion")
     assert first == (
-        r"\left(m_{1} + m_{2}\right) \ddot{x} + m_{2} l \cos\theta\, \ddot{\theta}"
-        r" - m_{2} l \sin\theta\, \dot{\theta}^{2} + k x = F"
+        r"\left(m_1 + m_2\right) \ddot{x} + m_2 l \cos\theta\, \ddot{\theta}"
+        r" - m_2 l \sin\theta\, \dot{\theta}^{2} + k x = F"
     )
-    assert second == r"m_{2} l \cos\theta\, \ddot{x} + m_{2} l^{2} \ddot{\theta} + m_{2} l g \sin\theta = \tau"
+    assert second == r"m_2 l \cos\theta\, \ddot{x} + m_2 l^{2} \ddot{\theta} + m_2 l g \sin\theta = \tau"
 
 
 def test_p03_kinetic_energy_has_the_half_in_front_and_squares_first() -> None:
     energies = _boxed(P03, "Energies")
     assert (
-        r"T = \tfrac{1}{2} \left(m_{1} + m_{2}\right) \dot{x}^{2} + \tfrac{1}{2} m_{2} l^{2} \dot{\theta}^{2}"
-        r" + m_{2} l \cos\theta\, \dot{\theta} \dot{x}"
+        r"T = \tfrac{1}{2} \left(m_1 + m_2\right) \dot{x}^{2} + \tfrac{1}{2} m_2 l^{2} \dot{\theta}^{2}"
+        r" + m_2 l \cos\theta\, \dot{\theta} \dot{x}"
     ) in energies
 
 
 def test_p05_gravity_is_collected_with_a_positive_bracket_after_the_accelerations() -> None:
     first = _boxed(P05, "Equations of motion")[0]
-    accelerations = first.index(r"\ddot{\theta}_{1}"), first.index(r"\ddot{\theta}_{2}")
+    accelerations = first.index(r"\ddot{\theta}_1"), first.index(r"\ddot{\theta}_2")
     assert accelerations[0] < accelerations[1] < first.index(r"\dot{\theta}")
-    assert r"+ \left(m_{1} + m_{2}\right) a_{1} g \cos\theta_{1}" in first
-    assert first.endswith(r"= \tau_{1}")
+    assert r"+ \left(m_1 + m_2\right) a_1 g \cos\theta_1" in first
+    assert first.endswith(r"= \tau_1")
 
 
 def test_a_bracket_with_a_negative_lead_takes_its_sign_outside() -> None:
     system = solved(str(P05))[0]
     g, m1, m2 = (next(p.symbol for p in system.parameters if str(p.symbol) == n) for n in ("g", "m1", "m2"))
     expr = sp.Mul(g, -m1 - m2, evaluate=False)
-    assert TexPrinter(system)(expr) == r"- \left(m_{1} + m_{2}\right) g"
+    assert TexPrinter(system)(expr) == r"- \left(m_1 + m_2\right) g"
 
 
 def test_ordered_printing_keeps_the_value() -> None:

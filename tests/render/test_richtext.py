@@ -24,7 +24,7 @@ def test_statement_maths_is_typeset_and_text_escaped_in_latex() -> None:
     from tutgen.render.latex import render_latex
 
     tex = render_latex(_with_statement())
-    assert r"\textbf{Problem.} Arm \& motor: $\dot{\theta}_{1}^{2} > 0$ at 50\%" in tex
+    assert r"\textbf{Problem.} Arm \& motor: $\dot{\theta}_1^{2} > 0$ at 50\%" in tex
     assert "theta1_dot" not in tex
 
 
@@ -32,7 +32,7 @@ def test_statement_maths_is_typeset_and_text_escaped_in_markdown() -> None:
     from tutgen.render.markdown import render_markdown
 
     md = render_markdown(_with_statement())
-    assert r"**Problem.** Arm & motor: $\dot{\theta}_{1}^{2} > 0$ at 50%" in md
+    assert r"**Problem.** Arm & motor: $\dot{\theta}_1^{2} > 0$ at 50%" in md
     assert "theta1_dot" not in md
 
 

@@ -26,14 +26,14 @@ def _shown(parts: list[dict[str, str]]) -> str:
         pytest.param("H q_ddot + C + G - Q equals Lagrange's", r"$H\ddot q + C + G - Q$ equals Lagrange's", id="eom"),
         pytest.param("H_dot - 2 C is skew-symmetric", r"$\dot H - 2C$ is skew-symmetric", id="skew"),
         pytest.param(
-            "so a change of theta1 alone moves it", r"so a change of $\theta_{1}$ alone moves it", id="coordinate-name"
+            "so a change of theta1 alone moves it", r"so a change of $\theta_1$ alone moves it", id="coordinate-name"
         ),
         pytest.param(
             "that is n^2 J_m theta2_dot^2 / 2 to T",
-            r"that is $n^{2} J_{m} \dot{\theta}_{2}^{2} / 2$ to $T$",
+            r"that is $n^{2} J_{m} \dot{\theta}_2^{2} / 2$ to $T$",
             id="formula-joined",
         ),
-        pytest.param("the condition -tau1 = 0.", r"the condition $-\tau_{1} = 0$.", id="sign-and-tail"),
+        pytest.param("the condition -tau1 = 0.", r"the condition $-\tau_1 = 0$.", id="sign-and-tail"),
         pytest.param("the inertia J_m = 3.3e-05: it", r"the inertia $J_{m} = 33 \times 10^{-6}$: it", id="e-notation"),
         pytest.param("a body at rest is in a state", "a body at rest is in a state", id="words-stay-words"),
     ],

@@ -8,6 +8,7 @@ import re
 from typing import Any, ClassVar
 
 import sympy as sp
+from sympy.core.function import AppliedUndef
 from sympy.printing.latex import LatexPrinter
 
 from tutgen.model.system import System
@@ -72,6 +73,15 @@ class _Printer(LatexPrinter):
                 out += (" - " if negative else " + ") + piece
         return out
 
+    def _print_Function(self, expr: sp.Function, exp: str | None = None) -> str:
+        """A function a statement names (``H(q)``, ``C(q, q_dot)``) as it is written, ``H(q)``; sympy's
+        own functions as sympy prints them."""
+        if not isinstance(expr, AppliedUndef):
+            return str(super()._print_Function(expr, exp))
+        name = self._settings["symbol_names"].get(sp.Symbol(expr.func.__name__), expr.func.__name__)
+        text = f"{name}({', '.join(self._print(a) for a in expr.args)})"
+        return text if exp is None else f"{text}^{{{exp}}}"
+
     def _print_Mul(self, expr: sp.Mul) -> str:
         """No ``1.0 x``: a unit float coefficient is left out. (Replacing it by 1 in the expression
         does not stick: sympy caches and compares Float(1.0) and 1 as the same.) With roles, the
@@ -90,7 +100,10 @@ class _Printer(LatexPrinter):
             if isinstance(f, sp.Add) and f.could_extract_minus_sign():
                 f, sign = -f, -sign
             factors.append(f)
-        factors.sort(key=lambda f: (order.factor_role(f, roles), sp.default_sort_key(f)))
+        # a named function of a statement's maths (H(q) in "H(q) q_ddot") leads, as it is written
+        factors.sort(
+            key=lambda f: (not isinstance(f, AppliedUndef), order.factor_role(f, roles), sp.default_sort_key(f))
+        )
         head = ""
         if coeff.is_Rational and not coeff.is_Integer and coeff.q <= 12 and abs(coeff.p) <= 12:
             if not any(f.is_Pow and f.exp.is_negative for f in factors):
@@ -155,6 +168,13 @@ class TexPrinter:
         self.roles = order.symbol_roles(system)
         #: the spec's significant figures for decimals (None in the spec: the default, 4)
         self.figures = getattr(system, "significant_figures", None) or SIGNIFICANT_FIGURES
+
+    def with_names(self, names: dict[sp.Symbol, str]) -> TexPrinter:
+        """The same printer knowing more names (a statement's free symbols, ``T``, ``q_dot``)."""
+        other = TexPrinter.__new__(TexPrinter)
+        other.__dict__.update(self.__dict__)
+        other.names = {**names, **self.names}
+        return other
 
     def __call__(self, expr: object) -> str:
         if isinstance(expr, sp.MatrixBase):

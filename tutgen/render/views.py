@@ -71,7 +71,8 @@ def rich(value: str, tex: TexPrinter, before: str = "", after: str = "") -> list
     parts: list[Part] = [text(before)] if before else []
     for piece in value.parts if isinstance(value, RichText) else (value,):
         if isinstance(piece, MathSpan):
-            printed = [tex(t) for t in piece.terms]
+            span_tex = tex.with_names(_free_names(piece))
+            printed = [span_tex(t) for t in piece.terms]
             chain = printed[0]
             for rel, term in zip(piece.relations, printed[1:], strict=True):
                 chain += f" {_RELATION_TEX.get(rel, rel)} {term}"
@@ -90,6 +91,23 @@ def rich(value: str, tex: TexPrinter, before: str = "", after: str = "") -> list
 
 
 _RELATION_TEX = {"!=": "\\ne", "<=": "\\le", ">=": "\\ge"}
+
+
+def _free_names(span: MathSpan) -> dict[sp.Symbol, str]:
+    """How the names a statement's maths uses without declaring them are typeset (``q_ddot`` -> q̈,
+    ``T``, the function names of ``H(q)``): by the spec's rule for display names."""
+    from sympy.core.function import AppliedUndef
+
+    from tutgen.spec.names import default_latex
+
+    names: dict[sp.Symbol, str] = {}
+    for term in span.terms:
+        for s in term.free_symbols:
+            if isinstance(s, sp.Symbol):
+                names[s] = default_latex(s.name)
+        for f in term.atoms(AppliedUndef):
+            names[sp.Symbol(f.func.__name__)] = default_latex(f.func.__name__)
+    return names
 
 
 def para(*parts: Part | list[Part]) -> Block:
