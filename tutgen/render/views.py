@@ -102,6 +102,8 @@ def _free_names(span: MathSpan) -> dict[sp.Symbol, str]:
 
     names: dict[sp.Symbol, str] = {}
     for term in span.terms:
+        if not isinstance(term, sp.Basic):  # a plain number
+            continue
         for s in term.free_symbols:
             if isinstance(s, sp.Symbol):
                 names[s] = default_latex(s.name)
