@@ -21,8 +21,9 @@ from typing import Any
 
 from tutgen.engine.derivation import Derivation
 from tutgen.model.system import Ask
+from tutgen.render.blocks import prose, rich
 from tutgen.render.printer import TexPrinter
-from tutgen.render.views import coordinate_items, given_items, prose, rich
+from tutgen.render.views import coordinate_items, given_items
 
 #: What each item of a spec's ``ask`` asks for, as a question sheet words it (maths between ``$``, LaTeX).
 ASKED = {

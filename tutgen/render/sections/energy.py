@@ -1,0 +1,49 @@
+"""The energies: T per body and in all, U and the Lagrangian (T as 1/2 q_dot^T H q_dot when too long)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from tutgen.model.system import Ask
+from tutgen.render.blocks import (
+    PRINT_BUDGET,
+    SolutionContext,
+    boxed,
+    display,
+    long_decimals,
+    ops,
+    para,
+    prose,
+    section,
+    tex_name,
+)
+
+
+def energies(c: SolutionContext) -> dict[str, Any] | None:
+    d, s, tex, num = c.d, c.s, c.tex, c.num
+    if d.kinetic_energy is None or not (Ask.KINETIC_ENERGY in s.ask or Ask.EQUATIONS_OF_MOTION in s.ask):
+        return None
+    intro = (
+        "The kinetic energy is given in the problem."
+        if s.kinetic_energy is not None
+        else "$T = \\sum \\tfrac12 m v_G^2 + \\tfrac12 \\omega^T J_G \\omega$ and "
+        "$U = -\\sum m\\,\\mathbf g\\cdot\\mathbf r_G$ plus the springs."
+    )
+    sec = section("Energies", intro)
+    blocks = sec["blocks"]
+    t_size = ops(d.kinetic_energy)
+    long_t = t_size > PRINT_BUDGET
+    for e in d.energies:
+        blocks.append(display(tex.equation(f"T_{{{tex_name(e.name)}}}", num(e.kinetic))))
+    only_t = Ask.EQUATIONS_OF_MOTION not in s.ask and Ask.KINETIC_ENERGY in s.ask
+    if long_t:
+        blocks.append(display("T = \\tfrac12\\, \\dot q^T H(q)\\, \\dot q"))
+        blocks.append(para(prose(f"with $H$ of the matrix form below (written out, $T$ has {t_size} operations).")))
+    else:
+        blocks.append((boxed if only_t else display)(tex.equation("T", num(d.kinetic_energy))))
+    if d.potential_energy is not None and Ask.POTENTIAL_ENERGY in s.ask:
+        u = num(d.potential_energy)
+        blocks.append(display(tex.equation("U", long_decimals(u) if long_t else u)))
+    if d.lagrangian is not None and Ask.LAGRANGIAN in s.ask and not long_t:
+        blocks.append(display(tex.equation("L = T - U", num(d.lagrangian))))
+    return sec

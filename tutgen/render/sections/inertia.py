@@ -1,0 +1,63 @@
+"""The mass properties of each body: its parts' inertia about their centroids, moved to the body
+frame's origin (parallel-axis theorem), the totals and the principal moments."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import sympy as sp
+
+from tutgen.model.system import Ask
+from tutgen.render.blocks import (
+    SolutionContext,
+    as_number,
+    boxed,
+    chain,
+    display,
+    math,
+    para,
+    section,
+    subheading,
+    text,
+)
+
+
+def mass_properties(c: SolutionContext) -> dict[str, Any] | None:
+    d, s, tex, num = c.d, c.s, c.tex, c.num
+    if Ask.INERTIA not in s.ask or not d.inertia:
+        return None
+    sec = section(
+        "Mass properties",
+        "Each part's inertia about its own centroid, then moved to the body "
+        "frame's origin by the parallel-axis theorem $J_O = J_G + m(|d|^2 E - d d^T)$.",
+    )
+    blocks = sec["blocks"]
+    for bi, principal in zip(d.inertia, d.principal, strict=True):
+        if s.coordinates and all(p.shape.value == "point" for p in bi.parts) and len(bi.parts) <= 1:
+            continue  # a lone point mass: its inertia is m r^2 in the energies, nothing to tabulate
+        for p in bi.parts:
+            blocks.append(subheading(f"{bi.name} / {p.name} ({p.shape.value.replace('_', ' ')})"))
+            chains = [chain("m", tex(p.mass), tex(as_number(num(p.mass))))]  # "m = m" says nothing: left out
+            if p.volume is not None:
+                chains.insert(0, chain("V", tex(p.volume), tex(as_number(num(p.volume)))))
+            blocks += [display(ch) for ch in chains if ch]
+            blocks.append(para(text("About its centroid:")))
+            blocks.append(display(f"J_G = {tex(as_number(num(p.inertia_centroid)))}"))
+            if any(x != 0 for x in p.centroid):
+                blocks.append(
+                    para(
+                        text("Centroid at "),
+                        math(f"d = {tex(as_number(num(p.centroid).T))}"),
+                        text("; distances to the axes "),
+                        math(f"({', '.join(tex(as_number(num(x))) for x in p.axis_distances)})"),
+                        text(":"),
+                    )
+                )
+                blocks.append(display(f"J_O = {tex(as_number(num(p.inertia_origin)))}"))
+        blocks.append(subheading(f"{bi.name}, total mass and inertia about the origin:"))
+        total = [chain("m", tex(as_number(num(bi.mass)))), f"J_O = {tex(as_number(num(bi.inertia_origin)))}"]
+        blocks.append(boxed(",\\quad ".join(t for t in total if t)))
+        if principal is not None:
+            moments = ",\\ ".join(tex(sp.Float(x)) for x in principal.moments)
+            blocks.append(para(text("Principal moments: "), math(moments), text(".")))
+    return sec if blocks else None

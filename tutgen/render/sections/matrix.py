@@ -1,0 +1,148 @@
+"""The matrix form H(q) q_ddot + C(q, q_dot) + G(q) = Q, written out, entry by entry or as the program
+of a serial arm, and the Christoffel symbols."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from tutgen.engine.derivation import Derivation
+from tutgen.model.system import Ask
+from tutgen.render.blocks import (
+    PRINT_BUDGET,
+    PROGRAM_BUDGET,
+    Block,
+    SolutionContext,
+    display,
+    long_decimals,
+    ops,
+    para,
+    prose,
+    section,
+    stacked,
+)
+from tutgen.render.printer import TexPrinter
+
+
+def matrix_form(c: SolutionContext) -> dict[str, Any] | None:
+    d, s, tex, num = c.d, c.s, c.tex, c.num
+    if d.mass_matrix is None or not (Ask.MATRIX_FORM in s.ask or Ask.CHRISTOFFEL in s.ask):
+        return None
+    sec = section(
+        "Matrix form",
+        "$H(q)\\ddot q + C(q,\\dot q) + G(q) = Q$, with $H$ read off "
+        "$T = \\tfrac12 \\dot q^T H \\dot q$ and $G = \\partial U/\\partial q$.",
+    )
+    size = ops(d.mass_matrix, d.coriolis_vector, d.gravity_vector)
+    if size > PROGRAM_BUDGET and d.program is not None and not s.springs:
+        sec["blocks"] += program_blocks(d, tex, num, size, Ask.MATRIX_FORM in s.ask)
+    elif size > PRINT_BUDGET:
+        sec["blocks"] += entry_by_entry(d, tex, num, Ask.MATRIX_FORM in s.ask)
+    else:
+        sec["blocks"].append(display(f"H = {tex(num(d.mass_matrix))}"))
+    if Ask.MATRIX_FORM in s.ask and size <= PRINT_BUDGET:
+        sec["blocks"].append(
+            display(
+                f"C = {tex(num(d.coriolis_vector))},\\quad G = {tex(num(d.gravity_vector))},"
+                f"\\quad Q = {tex(num(d.generalized_forces))}"
+            )
+        )
+    return sec
+
+
+def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
+    d, s, tex, num = c.d, c.s, c.tex, c.num
+    if not d.christoffel or Ask.CHRISTOFFEL not in s.ask:
+        return None
+    sec = section(
+        "Christoffel symbols",
+        "In the tutorial's convention $h_{ijk} = \\partial H_{ij}/\\partial q_k - \\tfrac12 "
+        "\\partial H_{jk}/\\partial q_i$, with $C_i = \\sum_{j,k} h_{ijk}\\dot q_j \\dot q_k$; "
+        "the symmetric symbols of the first kind are $c_{ijk} = \\tfrac12(\\partial_k H_{ij} + "
+        "\\partial_j H_{ik} - \\partial_i H_{jk})$.",
+    )
+    blocks = sec["blocks"]
+    nonzero = [(k, v) for k, v in sorted(d.christoffel.items()) if v != 0]
+    size = ops(*(v for _, v in nonzero))
+    if size > PRINT_BUDGET:
+        blocks.append(
+            para(
+                prose(
+                    f"{len(nonzero)} of the {len(d.christoffel)} symbols $h_{{ijk}}$ are nonzero; together they "
+                    f"have {size} operations, too many to print here. They are in the JSON output "
+                    "(tutgen solve --format json, under christoffel), and $C$ above is their contraction."
+                )
+            )
+        )
+    elif nonzero:
+        blocks.append(
+            display(",\\quad ".join(f"h_{{{i + 1}{j + 1}{k + 1}}} = {tex(num(v))}" for (i, j, k), v in nonzero))
+        )
+        blocks.append(para(prose("All other $h_{ijk}$ are zero.")))
+        first = [(k, v) for k, v in sorted(d.christoffel_first_kind.items()) if v != 0]
+        blocks.append(
+            display(",\\quad ".join(f"c_{{{i + 1}{j + 1}{k + 1}}} = {tex(num(v))}" for (i, j, k), v in first))
+        )
+    else:
+        blocks.append(para(prose("$H$ is constant, so every Christoffel symbol vanishes and $C = 0$.")))
+    return sec
+
+
+def entry_by_entry(d: Derivation, tex: TexPrinter, numeric: Any, with_c_g: bool) -> list[Block]:
+    """H (upper triangle; H is symmetric), C and G one entry per display, for results too long for a
+    matrix on a page."""
+
+    def num(e: Any) -> Any:
+        return long_decimals(numeric(e))
+
+    n = d.mass_matrix.shape[0]
+    blocks: list[Block] = [para(prose("$H$ is symmetric, $H_{ji} = H_{ij}$; its entries on and above the diagonal:"))]
+    for i in range(n):
+        for j in range(i, n):
+            blocks.append(display(tex.equation(f"H_{{{i + 1}{j + 1}}}", num(d.mass_matrix[i, j]))))
+    if with_c_g:
+        for name, vec in (("C", d.coriolis_vector), ("G", d.gravity_vector), ("Q", d.generalized_forces)):
+            for i in range(n):
+                blocks.append(display(tex.equation(f"{name}_{{{i + 1}}}", num(vec[i]))))
+    return blocks
+
+
+def program_blocks(d: Derivation, tex: TexPrinter, numeric: Any, size: int, with_c_g: bool) -> list[Block]:
+    """H, C and G of a serial arm as the straight-line program of tutgen.engine.recursive: the
+    intermediate quantities x_k of a recursive Newton-Euler pass (C q_dot with q_ddot = 0 and no gravity,
+    G with the arm at rest) and of the composite-rigid-body algorithm (H), in evaluation order."""
+    program = d.program
+    assert program is not None
+
+    def num(e: Any) -> Any:
+        return long_decimals(numeric(e))
+
+    n = d.mass_matrix.shape[0]
+    outputs = (
+        (program.mass_matrix, program.coriolis_vector, program.gravity_vector) if with_c_g else (program.mass_matrix,)
+    )
+    needed = program.needed(*outputs)
+    blocks: list[Block] = [
+        para(
+            prose(
+                f"Written out, the entries of $H$, $C$ and $G$ have {size} operations. They are computed here "
+                f"by the recursion that defines them instead: {len(needed)} intermediate quantities $x_k$, "
+                "each from earlier ones (a recursive Newton-Euler pass in the link frames gives $C$ with "
+                "$\\ddot q = 0$ and no gravity, and $G$ with the arm at rest; the composite-rigid-body "
+                "algorithm gives $H$). The JSON output has the entries written out."
+            )
+        )
+    ]
+    # one alignment each (align* breaks across pages between its rows, under \\allowdisplaybreaks)
+    blocks.append(stacked([f"{tex(x)} = {tex(num(e))}" for x, e in needed]))
+    blocks.append(para(prose("$H$ is symmetric, $H_{ji} = H_{ij}$; its entries on and above the diagonal:")))
+    blocks.append(
+        stacked(
+            [f"H_{{{i + 1}{j + 1}}} = {tex(num(program.mass_matrix[i, j]))}" for i in range(n) for j in range(i, n)]
+        )
+    )
+    if with_c_g:
+        lines = [f"C_{{{i + 1}}} = {tex(num(program.coriolis_vector[i]))}" for i in range(n)]
+        lines += [f"G_{{{i + 1}}} = {tex(num(program.gravity_vector[i]))}" for i in range(n)]
+        lines += [f"Q_{{{i + 1}}} = {tex(num(d.generalized_forces[i]))}" for i in range(n)]
+        blocks.append(stacked(lines))
+    return blocks
