@@ -66,6 +66,22 @@ def solved(path: str) -> tuple[Any, Any, dict[str, Any]]:
     return system, derivation, derivation_to_json(derivation)
 
 
+@cache
+def rendered(path: str, fmt: str) -> str | bytes:
+    """A spec's worked solution as ``fmt`` ("md", "tex" or "pdf", through ``tutgen.api.render``), rendered
+    once per session: the golden, typesetting, safety and wording tests all read the same text (a test of
+    the rendering itself, e.g. that two runs agree, calls ``render`` directly)."""
+    from tutgen.api import render
+
+    return render(solved(path)[1], fmt)
+
+
+def rendered_text(path: str | Path, fmt: str) -> str:
+    out = rendered(str(path), fmt)
+    assert isinstance(out, str)
+    return out
+
+
 @pytest.fixture
 def solve_spec():
     return lambda path: solved(str(path))

@@ -19,7 +19,7 @@ import pytest
 from typer.testing import CliRunner, Result
 
 import tutgen
-from tests.conftest import ROOT, SPECS, all_specs, solved
+from tests.conftest import ROOT, SPECS, all_specs, rendered_text, solved
 from tutgen.cli.main import app
 from tutgen.errors import (
     EXIT_CANNOT_DERIVE,
@@ -79,9 +79,7 @@ def broken_derive(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def expected_output(spec: Path, fmt: str) -> str:
-    from tutgen.api import render
-
-    return render(solved(str(spec))[1], fmt)
+    return rendered_text(spec, fmt)
 
 
 # --- the app itself ---

@@ -12,18 +12,14 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import HEAVY_SPECS, ROOT, all_specs, solved
+from tests.conftest import HEAVY_SPECS, ROOT, all_specs, rendered_text
 
 GOLDEN = ROOT / "tests" / "golden"
 FORMATS = ["md", "tex"]
 
 
 def rendered(spec: Path, fmt: str) -> str:
-    from tutgen.api import render
-
-    out = render(solved(str(spec))[1], fmt)
-    assert isinstance(out, str)
-    return out
+    return rendered_text(spec, fmt)
 
 
 @pytest.mark.parametrize("fmt", FORMATS)

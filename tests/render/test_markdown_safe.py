@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import ROOT, all_specs, solved
+from tests.conftest import ROOT, all_specs, rendered_text, solved
 
 FORBIDDEN = [
     r"\\label\b",
@@ -31,9 +31,7 @@ FORBIDDEN = [
 
 
 def markdown(spec: Path) -> str:
-    from tutgen.render.markdown import render_markdown
-
-    return render_markdown(solved(str(spec))[1])
+    return rendered_text(spec, "md")
 
 
 @pytest.mark.parametrize("spec", all_specs(), ids=lambda p: p.stem)

@@ -10,11 +10,13 @@ from __future__ import annotations
 import re
 import shutil
 import subprocess
+import tempfile
+from functools import cache
 from pathlib import Path
 
 import pytest
 
-from tests.conftest import all_specs, solved
+from tests.conftest import all_specs, rendered_text, solved
 
 pytestmark = [
     pytest.mark.pdf,
@@ -54,15 +56,26 @@ def overfull_boxes(tex: str, work: Path) -> list[float]:
     return [float(x) for x in _OVERFULL.findall(log)]
 
 
-@pytest.mark.parametrize("spec", all_specs(), ids=lambda p: p.stem)
-def test_no_display_is_scaled_or_wider_than_the_line(spec: Path, tmp_path: Path) -> None:
-    from tutgen.api import render
+@cache
+def compiled(spec: str) -> tuple[list[float], str]:
+    """A spec's LaTeX compiled once per session (both tests below read it): the overfull lines of the
+    log, and the PDF's text by pdftotext ("" when pdftotext is missing)."""
+    with tempfile.TemporaryDirectory(prefix="tutgen-typeset-") as work:
+        boxes = overfull_boxes(rendered_text(spec, "tex"), Path(work))
+        if shutil.which("pdftotext") is None:
+            return boxes, ""
+        text = subprocess.run(
+            ["pdftotext", "-enc", "UTF-8", "doc.pdf", "-"], cwd=work, capture_output=True, text=True, check=True
+        ).stdout
+    return boxes, text
 
-    tex = render(solved(str(spec))[1], "tex")
-    assert isinstance(tex, str)
+
+@pytest.mark.parametrize("spec", all_specs(), ids=lambda p: p.stem)
+def test_no_display_is_scaled_or_wider_than_the_line(spec: Path) -> None:
+    tex = rendered_text(spec, "tex")
     used = [cmd for cmd in SHRINKING if re.search(re.escape(cmd) + r"(?![A-Za-z])", tex)]
     assert used == []
-    too_wide = [w for w in overfull_boxes(tex, tmp_path) if w > 1.0]
+    too_wide = [w for w in compiled(str(spec))[0] if w > 1.0]
     assert too_wide == [], f"{len(too_wide)} overfull lines, up to {max(too_wide, default=0):.1f} pt"
 
 
@@ -92,16 +105,10 @@ def _not_from_the_user(found: str, spec: Path) -> list[str]:
 
 
 @pytest.mark.parametrize("spec", all_specs(), ids=lambda p: p.stem)
-def test_the_pdf_text_has_no_ascii_maths(spec: Path, tmp_path: Path) -> None:
+def test_the_pdf_text_has_no_ascii_maths(spec: Path) -> None:
     """pdftotext of the PDF: none of the ASCII tokens, unless the spec's own text has them."""
     if shutil.which("pdftotext") is None:
         pytest.skip("pdftotext not installed")
-    from tutgen.api import render
-
-    tex = render(solved(str(spec))[1], "tex")
-    assert isinstance(tex, str)
-    overfull_boxes(tex, tmp_path)
-    text = subprocess.run(
-        ["pdftotext", "-enc", "UTF-8", "doc.pdf", "-"], cwd=tmp_path, capture_output=True, text=True, check=True
-    ).stdout
+    text = compiled(str(spec))[1]
+    assert text
     assert _not_from_the_user(text, spec) == []
