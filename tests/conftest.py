@@ -17,6 +17,9 @@ SEED = Path(os.environ.get("TUTGEN_SEED_DIR", ROOT.parent / "shared" / "seed"))
 settings.register_profile("default", max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 settings.register_profile("long", max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
+#: for property tests whose every example derives a system and a reference (Kane) from scratch: a third
+#: of the profile's examples (4 in the default run, 66 with HYPOTHESIS_PROFILE=long)
+few_examples = settings(max_examples=max(4, settings.default.max_examples // 3))
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
@@ -32,6 +35,11 @@ def pytest_addoption(parser: pytest.Parser) -> None:
 #: PUMA), so every per-spec test of theirs runs only with ``-m slow``; tests/engine/test_recursive.py and
 #: test_serial.py check their dynamics in the default run without printing them
 HEAVY_SPECS = frozenset({"puma560", "stanford"})
+#: the specs whose PDF the default run compiles through ``latexmk`` (the product's route, sandbox and
+#: all): a composite body with its figure, a jointed chain with loads, a Lagrange-only arm, a DH arm, a
+#: spatial example. Every spec's LaTeX is compiled by pdflatex in tests/render/test_typeset.py anyway;
+#: ``-m slow`` compiles the rest through latexmk too.
+PDF_SAMPLE = frozenset({"p01-composite-inertia", "p03-cart-pendulum", "p05-rr-arm", "scara", "c-rotor-tilting-plate"})
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:

@@ -341,7 +341,10 @@ def dynamic_specs() -> list[Any]:
     for path in all_specs():
         data = yaml.safe_load(path.read_text(encoding="utf-8"))
         if isinstance(data, dict) and data.get("coordinates") and (data.get("bodies") or data.get("arm")):
-            out.append(pytest.param(path, id=path.relative_to(ROOT / "specs").with_suffix("").as_posix()))
+            # the numeric PUMA's Kane reference takes half a minute; Pinocchio checks that arm in the default
+            # run (tests/engine/test_pinocchio.py), this one with -m slow
+            marks = pytest.mark.slow if path.stem == "puma560-numeric" else ()
+            out.append(pytest.param(path, id=path.relative_to(ROOT / "specs").with_suffix("").as_posix(), marks=marks))
     return out
 
 

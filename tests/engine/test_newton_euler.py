@@ -22,7 +22,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from sympy.physics.mechanics import KanesMethod, Point, ReferenceFrame, RigidBody, dynamicsymbols, inertia
 
-from tests.conftest import SEED, SPECS, all_specs, solved
+from tests.conftest import SEED, SPECS, all_specs, few_examples, solved
 from tests.models import spec_models, system_of
 from tutgen.engine.newton_euler import PROJECTION_REMARK, NEMethod, derive_newton_euler
 from tutgen.engine.pipeline import derive
@@ -483,6 +483,7 @@ def kane_equations(system: Any) -> tuple[sp.Matrix, sp.Matrix, list[Any], list[A
     return km.mass_matrix, km.forcing, qs, us
 
 
+@few_examples
 @given(spec=serial_chains(), seed=st.integers(min_value=0, max_value=2**16))
 def test_random_serial_chains_newton_euler_lagrange_and_kane_agree(spec: dict[str, Any], seed: int) -> None:
     system = system_of(spec)

@@ -28,6 +28,7 @@ import sympy as sp
 from hypothesis import given
 from hypothesis import strategies as st
 
+from tests.conftest import few_examples
 from tests.models import planar_chain, system_of
 from tutgen.engine.inertia import body_inertia, shift_inertia
 from tutgen.engine.pipeline import derive
@@ -98,6 +99,7 @@ def h_dot(derivation: Any) -> sp.Matrix:
 # ---------------------------------------------------------------------------------------------
 
 
+@few_examples
 @given(n=sizes, seed=seeds, state_seed=seeds)
 def test_properties_mass_matrix_symmetric_positive_definite(n: int, seed: int, state_seed: int) -> None:
     system, derivation = chain(n, seed)
@@ -111,6 +113,7 @@ def test_properties_mass_matrix_symmetric_positive_definite(n: int, seed: int, s
             assert min(eigenvalues) > TOL * largest(h), f"H is not positive definite: eigenvalues {eigenvalues}"
 
 
+@few_examples
 @given(n=sizes, seed=seeds, state_seed=seeds)
 def test_properties_hdot_minus_2c_skew_symmetric(n: int, seed: int, state_seed: int) -> None:
     system, derivation = chain(n, seed)
@@ -123,6 +126,7 @@ def test_properties_hdot_minus_2c_skew_symmetric(n: int, seed: int, state_seed: 
                     assert_small(s[i, j] + s[j, i], largest(s), f"(H_dot - 2C)[{i},{j}] + [{j},{i}]")
 
 
+@few_examples
 @given(n=sizes, seed=seeds, state_seed=seeds)
 def test_properties_christoffel_symbols_rebuild_c(n: int, seed: int, state_seed: int) -> None:
     system, derivation = chain(n, seed)
@@ -176,6 +180,7 @@ def power_balance(system: Any, derivation: Any, state_seed: int) -> None:
             assert_small(de_dt - power, scale, f"dE/dt - q_dot.Q (dE/dt = {de_dt}, power = {power})")
 
 
+@few_examples
 @given(n=sizes, seed=seeds, state_seed=seeds)
 def test_properties_energy_conserved_without_forces(n: int, seed: int, state_seed: int) -> None:
     system, derivation = chain(n, seed)
@@ -184,6 +189,7 @@ def test_properties_energy_conserved_without_forces(n: int, seed: int, state_see
     power_balance(system, derivation, state_seed)
 
 
+@few_examples
 @given(n=sizes, seed=seeds, state_seed=seeds)
 def test_properties_energy_rate_is_power_of_forces(n: int, seed: int, state_seed: int) -> None:
     system, derivation = chain(n, seed, conservative=False)
@@ -308,6 +314,7 @@ rotation_lists = st.lists(
 )
 
 
+@few_examples
 @given(mass=positives, size=st.lists(positives, min_size=3, max_size=3), orientation=rotation_lists)
 def test_properties_inertia_invariant_under_rotation(mass: int, size: list[int], orientation: list[Any]) -> None:
     box = _part("box", mass, size, [0, 0, 0], None)

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import all_specs, solved
+from tests.conftest import PDF_SAMPLE, all_specs, solved
 
 pytestmark = [
     pytest.mark.pdf,
@@ -25,7 +25,11 @@ def pdf_of(spec: Path) -> bytes:
     return out
 
 
-@pytest.mark.parametrize("spec", all_specs(), ids=lambda p: p.stem)
+@pytest.mark.parametrize(
+    "spec",
+    [pytest.param(p, marks=() if p.stem in PDF_SAMPLE else pytest.mark.slow) for p in all_specs()],
+    ids=lambda p: p.stem,
+)
 def test_pdf_compiles(spec: Path) -> None:
     pdf = pdf_of(spec)
     assert pdf.startswith(b"%PDF-")
