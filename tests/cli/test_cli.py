@@ -98,6 +98,14 @@ def test_help_lists_the_commands() -> None:
     assert "schema" in result.stdout
 
 
+@pytest.mark.parametrize("command", [(), ("solve",), ("check",), ("sheet",), ("figure",), ("schema",)])
+def test_dash_h_is_help(command: tuple[str, ...]) -> None:
+    short, long = run(*command, "-h"), run(*command, "--help")
+    assert short.exit_code == long.exit_code == EXIT_OK
+    assert short.stdout == long.stdout
+    assert "-h, --help" in short.stdout
+
+
 def test_help_does_not_import_sympy(tmp_path: Path) -> None:
     proc = run_module("--help", cwd=tmp_path, flags=("-X", "importtime"))
     assert proc.returncode == EXIT_OK, proc.stderr.decode()
