@@ -685,6 +685,7 @@ def json_schema() -> dict[str, Any]:
         between = defs[element]["properties"]["between"]
         between["anyOf"][0]["items"] = endpoint
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
-    schema["$id"] = "https://tutgen.invalid/schema/spec-v1.json"
+    # tutgen.schemas.schema_id("spec"): a URN, as the project has no web home to name
+    schema["$id"] = "urn:tutgen:schema:spec:1"
     schema["title"] = "tutgen spec, format v1"
     return schema
