@@ -1,19 +1,62 @@
-"""The library face of the CLI: load, derive, render, write — in that order, all or nothing."""
+"""The library face of the CLI: load, derive, render, write — in that order, all or nothing.
+
+:func:`load`, :func:`loads`, :func:`derive`, :func:`render` and :func:`check` are the public Python API,
+re-exported as ``tutgen.load`` … (docs/api.md); the rest serves the command line.
+"""
 
 from __future__ import annotations
 
 import os
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from tutgen.errors import Location, SpecError, SpecErrors, TemplateError, UsageError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from tutgen.check.run import CheckRun
+    from tutgen.engine.derivation import Derivation
+    from tutgen.model.system import System
 
 EXTENSIONS = {"md": ".md", "tex": ".tex", "pdf": ".pdf", "json": ".json"}
 
 
-def render(derivation: object, fmt: str, template_dir: Path | None = None) -> str | bytes:
+def load(path: str | Path) -> System:
+    """Read and validate a spec file: a ``System`` (tutgen/model/system.py), or
+    :class:`~tutgen.errors.SpecErrors` with every problem at its file:line:col."""
+    from tutgen.spec.validate import load_system
+
+    return load_system(path)
+
+
+def loads(text: str, name: str = "<spec>") -> System:
+    """:func:`load` of a spec's text; ``name`` is the file name its errors are reported at."""
+    from tutgen.spec.validate import load_system_text
+
+    return load_system_text(text, name)
+
+
+def derive(system: System, *args: object, **kwargs: object) -> Derivation:
+    """Everything the spec asks for, in teaching order (:func:`tutgen.engine.pipeline.derive`; its
+    options, such as the methods to present, are passed on). Raises
+    :class:`~tutgen.errors.DerivationError` for a spec tutgen cannot derive."""
+    from tutgen.engine.pipeline import derive as derive_system
+
+    return derive_system(system, *args, **kwargs)
+
+
+def check(spec: str | Path, answers: Sequence[str | Path], **options: object) -> CheckRun:
+    """Mark answers files against a spec, as ``tutgen check`` does (:func:`tutgen.check.run.check`; its
+    options ``key``, ``jobs``, ``answer_timeout``, ``file_timeout`` are passed on). The result's
+    ``exit_code`` is the command's; ``files`` holds each file's verdict, item by item."""
+    from tutgen.check.run import check as check_files
+
+    return check_files(spec, answers, **options)  # type: ignore[arg-type]
+
+
+def render(derivation: object, fmt: str = "md", template_dir: Path | None = None) -> str | bytes:
     """Render one derivation in a format: 'md', 'tex', 'json' give text, 'pdf' gives bytes
     (the 'tex' document compiled with latexmk; :class:`tutgen.render.pdf.PdfError` if it cannot be).
     An error in a user's template (``template_dir``) is a :class:`~tutgen.errors.TemplateError`."""

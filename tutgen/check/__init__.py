@@ -10,6 +10,10 @@ procedure, the verdicts and the limits are documented in docs/check.md.
 
 from __future__ import annotations
 
+import sys
+import types
+from typing import Any
+
 from tutgen.check.answers import AnswerSheet, Tolerance, read_answers
 from tutgen.check.compare import EntryResult, ItemResult, Reference, Status, check_sheet
 from tutgen.check.key import MarkingKey, read_key
@@ -33,3 +37,15 @@ __all__ = [
     "read_answers",
     "read_key",
 ]
+
+
+class _CheckModule(types.ModuleType):
+    """The package is also the API function ``tutgen.check(spec, answers, **options)``
+    (:func:`tutgen.api.check`): a function and a subpackage of one name cannot both be attributes of
+    ``tutgen`` (importing the subpackage rebinds the name), so the subpackage is made callable."""
+
+    def __call__(self, *args: Any, **kwargs: Any) -> CheckRun:
+        return check(*args, **kwargs)  # tutgen.check.run.check, as tutgen.api.check
+
+
+sys.modules[__name__].__class__ = _CheckModule

@@ -23,11 +23,11 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
-from tutgen import __version__
 from tutgen.check.compare import EntryResult, ItemResult, Status
 from tutgen.check.run import CheckRun, FileResult
 from tutgen.errors import UsageError
 from tutgen.safetext import csv_cell, terminal_text, xml_text
+from tutgen.version import __version__
 
 __all__ = [
     "SUMMARY_FIELDS",

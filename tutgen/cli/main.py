@@ -10,9 +10,9 @@ import sys
 
 import typer
 
-from tutgen import __version__
 from tutgen.cli import check, figure, schema_cmd, sheet, solve
 from tutgen.cli.errors import install_signal_handlers, set_debug
+from tutgen.version import __version__
 
 app = typer.Typer(
     name="tutgen",

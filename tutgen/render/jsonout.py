@@ -12,11 +12,11 @@ from typing import Any
 import sympy as sp
 from sympy.printing.str import StrPrinter
 
-from tutgen import __version__
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.newton_euler import NewtonEuler
 from tutgen.figure.view import figure_json
 from tutgen.model.system import Ask
+from tutgen.version import __version__
 
 JSON_FORMAT_VERSION = 1
 

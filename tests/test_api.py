@@ -1,0 +1,58 @@
+"""The public Python API (`from tutgen import load, loads, derive, render, check`): its docstring
+examples run, its names resolve, and importing it stays light."""
+
+from __future__ import annotations
+
+import doctest
+import json
+import subprocess
+import sys
+
+import pytest
+
+import tutgen
+from tests.conftest import ROOT, SPECS
+
+
+@pytest.mark.parametrize("module", ["tutgen", "tutgen.engine.pipeline"])
+def test_the_documented_examples_run(module: str) -> None:
+    import importlib
+
+    result = doctest.testmod(importlib.import_module(module), optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0
+
+
+def test_every_public_name_resolves_and_unknown_ones_do_not() -> None:
+    assert set(tutgen.__all__) == {"__version__", "check", "derive", "load", "loads", "render"}
+    for name in tutgen.__all__:
+        assert getattr(tutgen, name) is not None
+    with pytest.raises(AttributeError):
+        tutgen.derivee  # noqa: B018
+
+
+def test_import_tutgen_does_not_import_sympy() -> None:
+    code = "import sys, tutgen; print(tutgen.__version__); print('sympy' in sys.modules)"
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+    assert done.stdout.split() == [tutgen.__version__, "False"]
+
+
+def test_load_derive_render_is_the_command_lines_pipeline() -> None:
+    spec = SPECS / "tutorial-1/p06-two-prismatic.yaml"
+    d = tutgen.derive(tutgen.load(spec))
+    doc = json.loads(tutgen.render(d, "json"))
+    assert doc["format"] == 1 and doc["coordinates"] == ["q1", "q2"]
+    assert tutgen.render(d).startswith("# ")  # Markdown by default
+
+
+def test_check_marks_answers_as_the_command_does() -> None:
+    run = tutgen.check(SPECS / "tutorial-1/p03-cart-pendulum.yaml", [ROOT / "tests/check/answers/p03-printed.yaml"])
+    assert run.exit_code == 0
+    assert run.files and all(item.status.value == "correct" for item in run.files[0].items)
+
+
+def test_bad_spec_text_is_a_located_error() -> None:
+    from tutgen.errors import SpecErrors
+
+    with pytest.raises(SpecErrors) as caught:
+        tutgen.loads("tutgen: 1\ntitle: t\nbodys: {}\n", "bad.yaml")
+    assert str(caught.value.errors[0]).startswith("bad.yaml:3:1")
