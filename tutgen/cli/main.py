@@ -10,7 +10,7 @@ import sys
 
 import typer
 
-from tutgen.cli import check, figure, schema_cmd, sheet, solve
+from tutgen.cli import check, figure, schema_cmd, sheet, solve, validate
 from tutgen.cli.errors import install_signal_handlers, set_debug
 from tutgen.version import __version__
 
@@ -51,6 +51,7 @@ app.command(name="schema")(schema_cmd.schema)
 app.command(name="check")(check.check)
 app.command(name="sheet")(sheet.sheet)
 app.command(name="figure")(figure.figure)  # tutgen/cli/figure.py
+app.command(name="validate")(validate.validate)  # tutgen/cli/validate.py
 
 
 def run() -> None:
