@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Iterator, Mapping
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -62,16 +63,42 @@ def all_specs() -> list[Path]:
     return sorted(p for p in SPECS.rglob("*.yaml") if "sheet" not in p.stem)
 
 
+class LazyDocument(Mapping[str, Any]):
+    """A derivation's JSON document, built on first use: most callers of :func:`solved` read only the
+    derivation, and the numeric PUMA's document takes six times as long as its derivation."""
+
+    def __init__(self, derivation: Any) -> None:
+        self._derivation = derivation
+        self._doc: dict[str, Any] | None = None
+
+    @property
+    def doc(self) -> dict[str, Any]:
+        if self._doc is None:
+            from tutgen.render.jsonout import derivation_to_json
+
+            self._doc = derivation_to_json(self._derivation)
+        return self._doc
+
+    def __getitem__(self, key: str) -> Any:
+        return self.doc[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.doc)
+
+    def __len__(self) -> int:
+        return len(self.doc)
+
+
 @cache
-def solved(path: str) -> tuple[Any, Any, dict[str, Any]]:
-    """(system, derivation, json document) for a spec path, derived once per session."""
+def solved(path: str) -> tuple[Any, Any, LazyDocument]:
+    """(system, derivation, json document) for a spec path, derived once per session (the document
+    built when first read; ``dict(doc)`` or ``doc.doc`` for the plain dict)."""
     from tutgen.engine.pipeline import derive
-    from tutgen.render.jsonout import derivation_to_json
     from tutgen.spec.validate import load_system
 
     system = load_system(path)
     derivation = derive(system)
-    return system, derivation, derivation_to_json(derivation)
+    return system, derivation, LazyDocument(derivation)
 
 
 @cache

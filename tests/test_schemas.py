@@ -65,7 +65,7 @@ def test_the_sheet_schema_refuses_what_the_reader_refuses(change: dict[str, Any]
 
 @pytest.mark.parametrize("spec", [p for p in all_specs() if p.stem not in HEAVY_SPECS], ids=lambda p: p.stem)
 def test_every_solution_json_fits_the_solution_schema(spec: Any) -> None:
-    assert errors("solution", json.loads(json.dumps(solved(str(spec))[2]))) == []
+    assert errors("solution", json.loads(json.dumps(solved(str(spec))[2].doc))) == []
 
 
 @pytest.mark.parametrize(
@@ -73,7 +73,7 @@ def test_every_solution_json_fits_the_solution_schema(spec: Any) -> None:
     [(("format",), 2), (("results", "mass_matrix"), "m"), (("checks",), [{"name": "x"}]), (("coordinates",), [1])],
 )
 def test_the_solution_schema_refuses_a_broken_document(where: tuple[str, ...], value: Any) -> None:
-    doc = copy.deepcopy(json.loads(json.dumps(solved(str(SPECS / "tutorial-1/p03-cart-pendulum.yaml"))[2])))
+    doc = copy.deepcopy(json.loads(json.dumps(solved(str(SPECS / "tutorial-1/p03-cart-pendulum.yaml"))[2].doc)))
     target = doc
     for key in where[:-1]:
         target = target[key]
