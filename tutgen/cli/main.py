@@ -11,7 +11,7 @@ import sys
 import typer
 
 from tutgen import __version__
-from tutgen.cli import check, figure, schema_cmd, sheet, solve
+from tutgen.cli import check, code, figure, schema_cmd, sheet, simulate, solve
 from tutgen.cli.errors import install_signal_handlers, set_debug
 
 app = typer.Typer(
@@ -39,7 +39,8 @@ def main(
     """Worked solutions for rigid-body and robot dynamics problems, from a short YAML spec.
 
     Exit codes: 0 ok, 1 answers wrong (check), 2 usage error, 3 invalid spec,
-    4 valid spec that tutgen cannot derive, 70 internal error, 130 interrupted, 143 terminated.
+    4 valid spec that tutgen cannot derive, 7 simulation stopped early,
+    8 simulation failed its energy check, 70 internal error, 130 interrupted, 143 terminated.
     """
     set_debug(debug)
     install_signal_handlers()
@@ -50,6 +51,8 @@ app.command(name="schema")(schema_cmd.schema)
 app.command(name="check")(check.check)
 app.command(name="sheet")(sheet.sheet)
 app.command(name="figure")(figure.figure)  # tutgen/cli/figure.py
+app.command(name="simulate")(simulate.simulate)  # tutgen/cli/simulate.py (scipy, matplotlib imported inside)
+app.command(name="code")(code.code)  # tutgen/cli/code.py
 
 
 def run() -> None:
