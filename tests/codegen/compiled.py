@@ -92,6 +92,9 @@ class CModel:
         fn.restype = ctypes.c_int
         args = [np.ascontiguousarray(v, dtype=float) for v in vectors]
         out = np.zeros(size)
-        status = fn(*[a.ctypes.data_as(ctypes.POINTER(ctypes.c_double)) for a in args], ctypes.byref(p),
-                    out.ctypes.data_as(ctypes.POINTER(ctypes.c_double)))
+        status = fn(
+            *[a.ctypes.data_as(ctypes.POINTER(ctypes.c_double)) for a in args],
+            ctypes.byref(p),
+            out.ctypes.data_as(ctypes.POINTER(ctypes.c_double)),
+        )
         return out, int(status)

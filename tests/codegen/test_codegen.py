@@ -206,7 +206,9 @@ def test_generated_code_agrees_with_pinocchio(path: str) -> None:
         m = np.array(pin.crba(rebuilt.model, data, rebuilt.to_pin(q)))
         m = (np.triu(m) + np.triu(m, 1).T)[np.ix_(idx, idx)]
         assert relative(module.mass_matrix(q, p), m) < RTOL
-        rnea = rebuilt.from_pin(pin.rnea(rebuilt.model, data, rebuilt.to_pin(q), rebuilt.to_pin(qd), rebuilt.to_pin(qdd)))
+        rnea = rebuilt.from_pin(
+            pin.rnea(rebuilt.model, data, rebuilt.to_pin(q), rebuilt.to_pin(qd), rebuilt.to_pin(qdd))
+        )
         ours = module.inverse_dynamics(q, qd, qdd, p) + module.generalized_forces(q, qd, p)
         ours = ours - np.ravel(np.array(spring_f(*q), dtype=float))
         assert relative(ours, rnea) < RTOL
@@ -230,7 +232,9 @@ def test_c_code_of_the_numeric_puma_agrees_with_pinocchio(tmp_path: Path) -> Non
         m = (np.triu(m) + np.triu(m, 1).T)[np.ix_(idx, idx)]
         assert relative(h.reshape(6, 6), m) < RTOL
         tau, _ = model.call("inverse_dynamics", cp, q, qd, qdd, size=6)
-        rnea = rebuilt.from_pin(pin.rnea(rebuilt.model, data, rebuilt.to_pin(q), rebuilt.to_pin(qd), rebuilt.to_pin(qdd)))
+        rnea = rebuilt.from_pin(
+            pin.rnea(rebuilt.model, data, rebuilt.to_pin(q), rebuilt.to_pin(qd), rebuilt.to_pin(qdd))
+        )
         assert relative(tau, rnea) < RTOL
         back, status = model.call("forward_dynamics", cp, q, qd, tau, size=6)
         assert status == 0 and relative(back, qdd) < 1e-8

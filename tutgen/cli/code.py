@@ -26,7 +26,10 @@ def code(
     output: Annotated[
         str | None,
         typer.Option(
-            "--output", "-o", metavar="PATH", help="Output file, or a directory (existing, or ending in '/'); default stdout."
+            "--output",
+            "-o",
+            metavar="PATH",
+            help="Output file, or a directory (existing, or ending in '/'); default stdout.",
         ),
     ] = None,
     force: Annotated[bool, typer.Option("--force", help="Overwrite an existing output file.")] = False,

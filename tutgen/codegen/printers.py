@@ -106,8 +106,12 @@ def _python(program: Program) -> str:
     if not params:
         out.append("    pass")
     for fn in program.functions:
-        out += ["", ""] + _python_function(program, fn, printer.doprint)
+        out += ["", "", *_python_function(program, fn, printer.doprint)]
     return "\n".join(out) + "\n"
+
+
+#: The functions whose result is an n x n matrix (the others give a vector, or U a scalar).
+SQUARE = frozenset({"mass_matrix", "coriolis_matrix"})
 
 
 def _python_function(program: Program, fn: Function, doprint: Callable[[sp.Expr], str]) -> list[str]:
@@ -120,7 +124,6 @@ def _python_function(program: Program, fn: Function, doprint: Callable[[sp.Expr]
         lines += [f"    {name} = {a}[..., {i}]" for i, name in table[a]]
     lines += [f"    {name} = p.{name}" for _, name in table["p"]]
     lines += [f"    {s} = {doprint(e)}" for s, e in fn.assignments]
-    rows, cols = fn.shape
     shape = f"numpy.broadcast_shapes({', '.join(f'{a}.shape[:-1]' for a in fn.arguments)})"
     lines.append(f"    shape = {shape}")
 
@@ -137,13 +140,11 @@ def _python_function(program: Program, fn: Function, doprint: Callable[[sp.Expr]
     if fn.solve is not None:
         lines += fill("H", fn.result, True) + fill("rhs", fn.solve, False)
         lines.append("    return numpy.linalg.solve(H, rhs[..., None])[..., 0]")
-    elif cols == 1 and fn.name != "potential_energy":
-        lines += fill("out", fn.result, False) + ["    return out"]
     elif fn.name == "potential_energy":
         lines += [f"    return numpy.zeros(shape) + {doprint(fn.result[0, 0])}"]
     else:
-        lines += fill("out", fn.result, True) + ["    return out"]
-    del rows
+        # n x n results stay matrices for n = 1 too
+        lines += [*fill("out", fn.result, fn.name in SQUARE), "    return out"]
     return lines
 
 
@@ -169,13 +170,15 @@ def _c(program: Program) -> str:
         "typedef struct {",
     ]
     for prm in program.parameters:
-        note = f" /* {_float_text(prm.value)} in the spec */" if prm.value is not None else " /* no value in the spec */"
+        note = (
+            f" /* {_float_text(prm.value)} in the spec */" if prm.value is not None else " /* no value in the spec */"
+        )
         out.append(f"    double {prm.name};{note}")
     if not program.parameters:
         out.append("    double unused; /* the model has no parameters */")
     out += [f"}} {m}_params;", ""]
     out += [
-        f"/* The spec's values; parameters without one are set to 0. */",
+        "/* The spec's values; parameters without one are set to 0. */",
         f"void {m}_default_params({m}_params *p)",
         "{",
     ]
@@ -185,7 +188,7 @@ def _c(program: Program) -> str:
         out.append("    p->unused = 0.0;")
     out.append("}")
     for fn in program.functions:
-        out += [""] + _c_function(program, fn, printer.doprint)
+        out += ["", *_c_function(program, fn, printer.doprint)]
     return "\n".join(out) + "\n"
 
 
@@ -204,7 +207,7 @@ def _c_function(program: Program, fn: Function, doprint: Callable[[sp.Expr], str
     if fn.solve is None:
         r = fn.result
         lines += [f"    out[{i * r.cols + j}] = {doprint(r[i, j])};" for i in range(r.rows) for j in range(r.cols)]
-        return lines + ["}"]
+        return [*lines, "}"]
     h, rhs = fn.result, fn.solve
     lines.append(f"    double H[{n * n}], rhs[{n}];")
     lines += [f"    H[{i * n + j}] = {doprint(h[i, j])};" for i in range(n) for j in range(n)]
@@ -276,7 +279,9 @@ def _matlab(program: Program) -> str:
         ]
         if fn.solve is not None:
             lines.append(f"rhs = zeros({fn.solve.rows}, 1);")
-            lines += [f"rhs({i + 1}) = {printer.doprint(fn.solve[i])};" for i in range(fn.solve.rows) if fn.solve[i] != 0]
+            lines += [
+                f"rhs({i + 1}) = {printer.doprint(fn.solve[i])};" for i in range(fn.solve.rows) if fn.solve[i] != 0
+            ]
             lines.append("out = H \\ rhs;")
         lines.append("end")
         out += lines
@@ -313,7 +318,9 @@ def _julia(program: Program) -> str:
         ]
         if fn.solve is not None:
             lines.append(f"    rhs = zeros({fn.solve.rows})")
-            lines += [f"    rhs[{i + 1}] = {printer.doprint(fn.solve[i])}" for i in range(fn.solve.rows) if fn.solve[i] != 0]
+            lines += [
+                f"    rhs[{i + 1}] = {printer.doprint(fn.solve[i])}" for i in range(fn.solve.rows) if fn.solve[i] != 0
+            ]
             lines.append("    return H \\ rhs")
         else:
             lines.append("    return out")

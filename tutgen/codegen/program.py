@@ -211,9 +211,11 @@ def build_program(
         # route, derivation.gravity_vector - program G) is taken from the expanded form
         route = "recursive program"
         defs = prog.definitions
-        springs = sp.ImmutableMatrix(
-            [sp.expand(g_vec[i] - _expanded_gravity(prog)[i]) for i in range(n)]
-        ) if _has_springs(system) else sp.zeros(n, 1)
+        springs = (
+            sp.ImmutableMatrix([sp.expand(g_vec[i] - _expanded_gravity(prog)[i]) for i in range(n)])
+            if _has_springs(system)
+            else sp.zeros(n, 1)
+        )
         hm, c_vec, g_vec = prog.mass_matrix, prog.coriolis_vector, prog.gravity_vector + springs
 
     results: list[tuple[str, str, tuple[str, ...], sp.MatrixBase, sp.MatrixBase | None]] = [
@@ -232,7 +234,13 @@ def build_program(
         )
     results += [
         ("gravity_vector", "G(q) = dU/dq, gravity and springs (n).", ("q",), g_vec, None),
-        ("generalized_forces", "Q(q, q_dot), dampers, loads and given generalized forces (n).", ("q", "qd"), q_vec, None),
+        (
+            "generalized_forces",
+            "Q(q, q_dot), dampers, loads and given generalized forces (n).",
+            ("q", "qd"),
+            q_vec,
+            None,
+        ),
     ]
     if derivation.potential_energy is not None:
         results.append(
@@ -263,8 +271,15 @@ def build_program(
     functions = []
     for name, doc, args, result, solve in results:
         functions.append(
-            _function(name, doc, args, renamed_matrix(result), renamed_matrix(solve) if solve is not None else None,
-                      tuple((rename.setdefault(s, s), e.xreplace(rename)) for s, e in defs), letter)
+            _function(
+                name,
+                doc,
+                args,
+                renamed_matrix(result),
+                renamed_matrix(solve) if solve is not None else None,
+                tuple((rename.setdefault(s, s), e.xreplace(rename)) for s, e in defs),
+                letter,
+            )
         )
     return Program(
         module=module_name(spec_file.rsplit(".", 1)[0]),

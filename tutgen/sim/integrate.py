@@ -25,7 +25,8 @@ __all__ = ["METHODS", "STIFFNESS", "Trajectory", "choose_method", "integrate"]
 METHODS = ("auto", "DOP853", "RK45", "Radau", "BDF", "LSODA")
 #: λ (t_end - t_start) above which the start is called stiff.
 STIFFNESS = 1e4
-#: The condition number of H above which the state counts as singular.
+#: The condition number of H above which the state counts as singular (for one coordinate: H this many
+#: times smaller than at the start).
 SINGULAR_CONDITION = 1e12
 
 
@@ -56,11 +57,18 @@ class Trajectory:
 
 
 def _derivative(model: NumericModel, n: int, counter: list[int]):  # noqa: ANN202 - a closure for scipy
+    scale: list[float] = []  # |H| at the first state: a 1 x 1 H is singular when it is tiny against it
+
     def f(t: float, y: np.ndarray) -> np.ndarray:
         counter[0] += 1
         q, qd = y[:n], y[n:]
         h, rhs = model.accelerations(t, q, qd)
-        condition = np.linalg.cond(h) if n > 1 else (np.inf if h[0, 0] == 0 else 1.0)
+        if n > 1:
+            condition = np.linalg.cond(h)
+        else:
+            if not scale:
+                scale.append(abs(float(h[0, 0])))
+            condition = scale[0] / abs(float(h[0, 0])) if h[0, 0] != 0 else np.inf
         if not np.isfinite(condition) or condition > SINGULAR_CONDITION or not np.all(np.isfinite(rhs)):
             raise _Singular(t, q.copy(), float(condition))
         return np.concatenate([qd, np.linalg.solve(h, rhs)])

@@ -77,7 +77,7 @@ class SimulationResult:
         """True or False for a conservative run, None when energy need not be constant."""
         if not self.conservative or self.drift is None:
             return None
-        return self.drift <= self.tolerance
+        return bool(self.drift <= self.tolerance)
 
 
 def _number(text: str, option: str, names: Mapping[str, sp.Expr], values: Mapping[sp.Symbol, sp.Expr]) -> float:
@@ -104,7 +104,9 @@ def _split(pairs: Mapping[str, str], option: str, known: list[str], what: str) -
         if name not in known:
             close = difflib.get_close_matches(name, known, n=1)
             hint = f"; did you mean '{close[0]}'?" if close else ""
-            raise UsageError(f"{option} {name}=...: unknown {what} '{name}' (known: {', '.join(known) or 'none'}){hint}")
+            raise UsageError(
+                f"{option} {name}=...: unknown {what} '{name}' (known: {', '.join(known) or 'none'}){hint}"
+            )
 
 
 def _needed_parameters(derivation: Derivation, inputs: Mapping[str, sp.Expr]) -> set[sp.Symbol]:
@@ -218,9 +220,9 @@ def simulate_system(derivation: Derivation, settings: Settings, spec_file: str) 
     drift = None
     if len(trajectory.t):
         total = kinetic + potential
-        scale = max(abs(total[0]), float(np.max(kinetic)))
+        scale = max(abs(float(total[0])), float(np.max(kinetic)))
         change = float(np.max(np.abs(total - total[0])))
-        drift = change / scale if scale > 0 else change
+        drift = float(change / scale if scale > 0 else change)
     return SimulationResult(
         spec_file=spec_file,
         coordinates=tuple(coords),
@@ -278,7 +280,9 @@ def simulate_spec(
 
             charge("plotting")
             files["plot"] = plot_png(result)
-            values = {p.symbol: v for p, v in ((p, result.values.get(p.name)) for p in system.parameters) if v is not None}
+            values = {
+                p.symbol: v for p, v in ((p, result.values.get(p.name)) for p in system.parameters) if v is not None
+            }
             strip = snapshots_png(result, system, values)
             if strip is not None:
                 files["snapshots"] = strip
@@ -290,7 +294,9 @@ def outcome_error(result: SimulationResult, written: str) -> SimulationError | N
     tr = result.trajectory
     if tr.stopped is not None:
         state = ", ".join(f"{n} = {v:.6g}" for n, v in zip(result.coordinates, tr.stop_state or (), strict=False))
-        return SimulationError(f"the simulation stopped: {tr.stopped}, at {state}; the trajectory so far is in {written}")
+        return SimulationError(
+            f"the simulation stopped: {tr.stopped}, at {state}; the trajectory so far is in {written}"
+        )
     if result.check_passed is False:
         return SimulationCheckError(
             f"energy check failed: the total energy of a system without dissipation or inputs drifted by "

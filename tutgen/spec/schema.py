@@ -601,7 +601,9 @@ class SimulateSpec(SpecModel):
         "their rates, e.g. {tau: 2*sin(t), F: -k_p*x - k_d*x_dot}.",
     )
     samples: int | None = Field(
-        None, description="How many equally spaced instants the trajectory is written at (default 1001).", ge=2,
+        None,
+        description="How many equally spaced instants the trajectory is written at (default 1001).",
+        ge=2,
         le=1_000_000,
     )
 
