@@ -23,7 +23,15 @@ from tutgen.model.simulation import DEFAULT_INTERVAL, DEFAULT_SAMPLES
 from tutgen.model.system import System
 from tutgen.sim.integrate import Trajectory, integrate
 
-__all__ = ["DRIFT_FACTOR", "Settings", "SimulationResult", "output_names", "simulate_spec", "simulate_system"]
+__all__ = [
+    "DRIFT_FACTOR",
+    "Settings",
+    "SimulationResult",
+    "output_names",
+    "simulate_spec",
+    "simulate_system",
+    "simulation_plot",
+]
 
 #: The energy check fails when the relative drift exceeds this many times the integrator's rtol.
 DRIFT_FACTOR = 100
@@ -304,3 +312,12 @@ def outcome_error(result: SimulationResult, written: str) -> SimulationError | N
             f"try a tighter --rtol or --method DOP853 (files written to {written})"
         )
     return None
+
+
+def simulation_plot(derivation: Derivation, settings: Settings, spec_file: str) -> tuple[str, bytes]:
+    """The plot of a run as ``(file name, PNG bytes)``, for a worked solution or a sheet to place beside
+    its text (the hook for ``ask: [simulation]``; the solution views do not call it yet)."""
+    from tutgen.sim.plots import plot_png
+
+    result = simulate_system(derivation, settings, spec_file)
+    return Path(spec_file).stem + SUFFIXES["plot"], plot_png(result)
