@@ -15,6 +15,8 @@
 from __future__ import annotations
 
 import random
+import sys
+import types
 from pathlib import Path
 
 import numpy as np
@@ -74,7 +76,7 @@ def _symbolic(derivation, values: dict[str, float], q, qd, qdd):
     return {
         "mass_matrix": num(derivation.mass_matrix),
         "coriolis_vector": num(derivation.coriolis_vector).ravel(),
-        "coriolis_matrix": num(derivation.coriolis_matrix),
+        "coriolis_matrix": num(derivation.coriolis_matrix) if derivation.coriolis_matrix is not None else None,
         "gravity_vector": num(derivation.gravity_vector).ravel(),
         "generalized_forces": num(derivation.generalized_forces).ravel(),
         "potential_energy": float(num(sp.Matrix([[derivation.potential_energy]]))[0, 0]),
@@ -287,3 +289,26 @@ def test_c_with_keyword_names_compiles_and_runs(names_derivation, tmp_path: Path
     # m x_ddot + k (x - end) - m H... : gravity along -x, G = m H + k (x - end), Q = p
     tau, _ = model.call("inverse_dynamics", params, np.array([1.0]), np.array([0.0]), np.array([0.5]), size=1)
     assert tau[0] == pytest.approx(2 * 0.5 + 2 * 9.81 + 40 * (1.0 - 0.5) - 3.0, rel=1e-12)
+
+
+def test_serial_route_code_keeps_springs_and_dampers() -> None:
+    # a 4R arm takes the serial route (H, C q_dot, G from the recursive program); its spring and damper
+    # come from the derivation's spring energies and Q
+    text = (ROOT / "specs/arms/planar-4r.yaml").read_text()
+    text += (
+        "springs: {back: {stiffness: k, extension: q2 - q20}}\ndampers: {joint3: {coefficient: c, extension: q3}}\n"
+    )
+    text = text.replace("parameters: [m1,", "parameters: [k, q20, c, m1,")
+    derivation = derive(load_system_text(text))
+    assert derivation.program is not None
+    module = types.ModuleType("serial_springs")
+    sys.modules[module.__name__] = module
+    exec(compile(generate_code(derivation, "python", "arm.yaml"), "arm", "exec"), module.__dict__)
+    values = random_values(derivation.system, 21)
+    p = _params(module, values)
+    for q, qd, qdd in _states(4, 22, count=2):
+        ref = _symbolic(derivation, values, q, qd, qdd)
+        assert relative(module.gravity_vector(q, p), ref["gravity_vector"]) < RTOL
+        assert relative(module.mass_matrix(q, p), ref["mass_matrix"]) < RTOL
+        assert relative(module.coriolis_vector(q, qd, p), ref["coriolis_vector"]) < RTOL
+        assert relative(module.generalized_forces(q, qd, p), ref["generalized_forces"]) < RTOL

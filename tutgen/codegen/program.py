@@ -97,7 +97,7 @@ class Program:
     parameters: tuple[Parameter, ...]
     functions: tuple[Function, ...]
     renamed: tuple[tuple[str, str], ...]
-    route: str  # how H, C q_dot and G were obtained: "recursive program" or "common subexpressions"
+    route: str  # how H, C q_dot and G were obtained (said in the header)
 
     @property
     def n(self) -> int:
@@ -204,18 +204,15 @@ def build_program(
     c_vec = derivation.coriolis_vector if derivation.coriolis_vector is not None else sp.zeros(n, 1)
     qdd = sp.ImmutableMatrix([c.qdd for c in coords])
     prog = derivation.program
-    route = "common subexpressions"
+    route = "sympy.cse of the derived entries"
     defs: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
     if prog is not None:
-        # the recursive program gives H, C q_dot and G; only the spring part of G (added by the serial
-        # route, derivation.gravity_vector - program G) is taken from the expanded form
-        route = "recursive program"
+        # the recursive program gives H, C q_dot and G of the links and gravity; the springs' part of G
+        # (which the serial route adds to its expanded G) is dU_springs/dq
+        route = "the derivation's recursive program (Newton-Euler for C q_dot and G, composite bodies for H)"
         defs = prog.definitions
-        springs = (
-            sp.ImmutableMatrix([sp.expand(g_vec[i] - _expanded_gravity(prog)[i]) for i in range(n)])
-            if _has_springs(system)
-            else sp.zeros(n, 1)
-        )
+        u_springs = sp.Add(*[e for _, e in derivation.spring_energies])
+        springs = sp.ImmutableMatrix([sp.diff(u_springs, c.q) for c in coords])
         hm, c_vec, g_vec = prog.mass_matrix, prog.coriolis_vector, prog.gravity_vector + springs
 
     results: list[tuple[str, str, tuple[str, ...], sp.MatrixBase, sp.MatrixBase | None]] = [
@@ -294,16 +291,6 @@ def build_program(
         renamed=renamed,
         route=route,
     )
-
-
-def _has_springs(system: object) -> bool:
-    return bool(getattr(system, "springs", ()))
-
-
-def _expanded_gravity(prog: object) -> sp.ImmutableMatrix:
-    from tutgen.engine.recursive import expand
-
-    return expand(prog)[2]  # type: ignore[arg-type]
 
 
 def _function(
