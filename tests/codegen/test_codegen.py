@@ -295,9 +295,7 @@ def test_serial_route_code_keeps_springs_and_dampers() -> None:
     # a 4R arm takes the serial route (H, C q_dot, G from the recursive program); its spring and damper
     # come from the derivation's spring energies and Q
     text = (ROOT / "specs/arms/planar-4r.yaml").read_text()
-    text += (
-        "springs: {back: {stiffness: k, extension: q2 - q20}}\ndampers: {joint3: {coefficient: c, extension: q3}}\n"
-    )
+    text += "springs: {back: {stiffness: k, extension: q2 - q20}}\ndampers: {joint3: {coefficient: c, extension: q3}}\n"
     text = text.replace("parameters: [m1,", "parameters: [k, q20, c, m1,")
     derivation = derive(load_system_text(text))
     assert derivation.program is not None

@@ -62,7 +62,7 @@ def plot_png(result: SimulationResult) -> bytes:
         axes[2].set_title(f"relative energy drift {result.drift:.2g} (tolerance {result.tolerance:.2g})", fontsize=9)
     for ax in axes:
         ax.grid(True, alpha=0.3)
-        ax.legend(loc="upper right", fontsize=8)
+        ax.legend(loc="best", fontsize=8)
     if tr.stopped is not None:
         fig.suptitle(f"stopped early: {tr.stopped}", fontsize=9, color="darkred")
     return _png(fig)
@@ -125,7 +125,9 @@ def snapshots_png(result: SimulationResult, system: System, values: dict) -> byt
     allpts = np.array([p for frame in frames for line in frame for p in line])
     lo, hi = allpts.min(axis=0), allpts.max(axis=0)
     pad = 0.08 * float(max(hi[a] - lo[a], hi[b] - lo[b]) or 1.0)
-    fig = _figure(2.0 * len(picks), 2.6)
+    # panels as tall as the mechanism's extent needs at 2 inches wide (between 1.2 and 4 inches)
+    aspect = float((hi[b] - lo[b] + 2 * pad) / max(hi[a] - lo[a] + 2 * pad, 1e-12))
+    fig = _figure(2.0 * len(picks), min(4.0, max(1.2, 2.0 * aspect)) + 0.9)
     axes = fig.subplots(1, len(picks), squeeze=False)[0]
     axis_names = "xyz"
     for ax, k, frame in zip(axes, picks, frames, strict=True):
