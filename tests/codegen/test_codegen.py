@@ -255,12 +255,13 @@ parameters:
   double: {{value: 2 kg, description: "{MARKER} description"}}
   end: 0.5 m
   H: 9.81 m/s^2
+  shape: 40 N/m
   p: {{dimension: force}}
 coordinates: {{int: {{dimension: length, description: "{MARKER}"}}}}
 gravity: [-H, 0, 0]
 bodies: {{block: {{mass: double}}}}
 joints: {{slide: {{type: prismatic, parent: ground, child: block, axis: x, coordinate: int}}}}
-springs: {{s: {{stiffness: 40 N/m, extension: int - end}}}}
+springs: {{s: {{stiffness: shape, extension: int - end}}}}
 generalized_forces: {{int: p}}
 """
 
@@ -278,13 +279,15 @@ def test_code_holds_no_spec_text_but_declared_names(names_derivation, language: 
     header = text[:3000]
     expected = {"python": "H -> H_", "c": "double -> double_", "matlab": "end -> end_", "julia": "end -> end_"}
     assert expected[language] in header
+    assert "shape -> shape_" in header  # a local of the generated functions
 
 
 @needs_gcc
 def test_c_with_keyword_names_compiles_and_runs(names_derivation, tmp_path: Path) -> None:
     source = generate_code(names_derivation, "c", "names.yaml")
     lib = compile_c(source, tmp_path, "names")
-    model = CModel(lib, "names", 1, [("double", "double_"), ("end", "end"), ("H", "H_"), ("p", "p_")])
+    fields = [("double", "double_"), ("end", "end"), ("H", "H_"), ("shape", "shape_"), ("p", "p_")]
+    model = CModel(lib, "names", 1, fields)
     params = model.params({"p": 3.0})
     # m x_ddot + k (x - end) - m H... : gravity along -x, G = m H + k (x - end), Q = p
     tau, _ = model.call("inverse_dynamics", params, np.array([1.0]), np.array([0.0]), np.array([0.5]), size=1)
@@ -310,3 +313,12 @@ def test_serial_route_code_keeps_springs_and_dampers() -> None:
         assert relative(module.mass_matrix(q, p), ref["mass_matrix"]) < RTOL
         assert relative(module.coriolis_vector(q, qd, p), ref["coriolis_vector"]) < RTOL
         assert relative(module.generalized_forces(q, qd, p), ref["generalized_forces"]) < RTOL
+
+
+def test_python_with_keyword_names_runs(names_derivation) -> None:
+    module = types.ModuleType("names_python")
+    sys.modules[module.__name__] = module
+    exec(compile(generate_code(names_derivation, "python", "names.yaml"), "names", "exec"), module.__dict__)
+    p = module.Parameters(p_=3.0)
+    tau = module.inverse_dynamics(np.array([1.0]), np.array([0.0]), np.array([0.5]), p)
+    assert tau[0] == pytest.approx(2 * 0.5 + 2 * 9.81 + 40 * (1.0 - 0.5) - 3.0, rel=1e-12)

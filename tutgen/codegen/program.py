@@ -105,7 +105,9 @@ class Program:
 
 
 #: The vector arguments and the locals of every generated function: spec names equal to one are renamed.
-RESERVED_LOCALS = frozenset({"q", "qd", "qdd", "tau", "p", "out", "H", "rhs", "L", "np", "numpy", "math", "i", "j"})
+RESERVED_LOCALS = frozenset(
+    {"q", "qd", "qdd", "tau", "p", "out", "H", "rhs", "L", "np", "numpy", "math", "i", "j", "shape", "dyn", "t"}
+)
 
 
 def safe_file_name(name: str) -> str:
