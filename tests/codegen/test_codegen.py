@@ -322,3 +322,45 @@ def test_python_with_keyword_names_runs(names_derivation) -> None:
     p = module.Parameters(p_=3.0)
     tau = module.inverse_dynamics(np.array([1.0]), np.array([0.0]), np.array([0.5]), p)
     assert tau[0] == pytest.approx(2 * 0.5 + 2 * 9.81 + 40 * (1.0 - 0.5) - 3.0, rel=1e-12)
+
+
+LINEAR_SPEC = """
+tutgen: 1
+title: damped pendulum on a spring-loaded slider
+parameters: {m: 0.7 kg, M: 2 kg, l: 0.9 m, g: 9.81 m/s^2, c: 0.3 N*m*s, b: 1.5 N*s/m, k: 20 N/m}
+coordinates: {x: {dimension: length}, theta: {dimension: angle}}
+gravity: [0, -g, 0]
+bodies: {cart: {mass: M}, bob: {mass: m, com: [0, -l, 0]}}
+joints:
+  slide: {type: prismatic, parent: ground, child: cart, axis: x, coordinate: x}
+  pin: {type: revolute, parent: cart, child: bob, axis: z, coordinate: theta}
+springs: {wall: {stiffness: k, extension: x}}
+dampers: {hinge: {coefficient: c, extension: theta}, rail: {coefficient: b, extension: x}}
+"""
+
+
+@pytest.mark.parametrize("language", ["python", "c"])
+def test_linear_model_is_the_hand_derived_one(language: str, tmp_path: Path) -> None:
+    # by hand: U = k x^2/2 - m g l cos(theta), Q = (-b x_dot, -c theta_dot):
+    # K = diag(k, m g l cos(theta)), D = diag(b, c)
+    derivation = derive(load_system_text(LINEAR_SPEC))
+    theta = 0.4
+    k_hand = np.diag([20.0, 0.7 * 9.81 * 0.9 * np.cos(theta)])
+    d_hand = np.diag([1.5, 0.3])
+    q = np.array([0.1, theta])
+    source = generate_code(derivation, language, "lin.yaml", linear=True)
+    if language == "python":
+        module = types.ModuleType("linear_python")
+        sys.modules[module.__name__] = module
+        exec(compile(source, "lin", "exec"), module.__dict__)
+        p = module.Parameters()
+        stiffness, damping = module.linear_stiffness(q, p), module.linear_damping(q, p)
+    else:
+        if GCC is None:
+            pytest.skip("gcc is not installed")
+        model = CModel(compile_c(source, tmp_path, "lin"), "lin", 2, [(s, s) for s in "mMlgcbk"])
+        p = model.params({})
+        stiffness = model.call("linear_stiffness", p, q, size=4)[0].reshape(2, 2)
+        damping = model.call("linear_damping", p, q, size=4)[0].reshape(2, 2)
+    assert relative(stiffness, k_hand) < 1e-12
+    assert relative(damping, d_hand) < 1e-12

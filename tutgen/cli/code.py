@@ -33,6 +33,9 @@ def code(
         ),
     ] = None,
     force: Annotated[bool, typer.Option("--force", help="Overwrite an existing output file.")] = False,
+    linear: Annotated[
+        bool, typer.Option("--linear", help="Also the linear model about an equilibrium: K(q) and D(q).")
+    ] = False,
     timeout: Annotated[
         float, typer.Option("--timeout", metavar="SECONDS", min=0, help="Stop a run that takes longer (0: no limit).")
     ] = DEFAULT_TIMEOUT,
@@ -46,7 +49,7 @@ def code(
     from tutgen.codegen.run import code_for_spec, plan_code_output
 
     target = plan_code_output(spec, output, lang.value, force=force) if output is not None else None
-    text = code_for_spec(spec, lang.value, timeout=timeout or None)
+    text = code_for_spec(spec, lang.value, timeout=timeout or None, linear=linear)
     if target is None:
         stdout_write(text)
         return

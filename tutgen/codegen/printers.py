@@ -111,7 +111,7 @@ def _python(program: Program) -> str:
 
 
 #: The functions whose result is an n x n matrix (the others give a vector, or U a scalar).
-SQUARE = frozenset({"mass_matrix", "coriolis_matrix"})
+SQUARE = frozenset({"mass_matrix", "coriolis_matrix", "linear_stiffness", "linear_damping"})
 
 
 def _python_function(program: Program, fn: Function, doprint: Callable[[sp.Expr], str]) -> list[str]:
@@ -357,10 +357,11 @@ LANGUAGES: dict[str, tuple[str, Callable[[], frozenset[str]], Callable[[Program]
 }
 
 
-def generate_code(derivation: Derivation, language: str, spec_file: str) -> str:
+def generate_code(derivation: Derivation, language: str, spec_file: str, linear: bool = False) -> str:
     """The dynamics of ``derivation`` as source code in ``language`` (one of :data:`LANGUAGES`);
     ``spec_file`` is the spec's file name, shown in the header (and, as an identifier, the module's
-    name and the prefix of C names).
+    name and the prefix of C names). ``linear`` adds the linear model's K(q) and D(q)
+    (:func:`tutgen.codegen.program.linear_terms`).
 
     Examples
     ========
@@ -386,5 +387,5 @@ def generate_code(derivation: Derivation, language: str, spec_file: str) -> str:
     if language not in LANGUAGES:
         raise ValueError(f"language must be one of {', '.join(LANGUAGES)}, not {language!r}")
     _, reserved, printer = LANGUAGES[language]
-    program = build_program(derivation, language, reserved(), spec_file)
+    program = build_program(derivation, language, reserved(), spec_file, linear)
     return printer(program)

@@ -32,7 +32,15 @@ import sympy as sp
 
 from tutgen.engine.derivation import Derivation
 
-__all__ = ["Function", "Parameter", "Program", "build_program", "safe_file_name", "target_names"]
+__all__ = [
+    "Function",
+    "Parameter",
+    "Program",
+    "build_program",
+    "linear_terms",
+    "safe_file_name",
+    "target_names",
+]
 
 
 @dataclass(frozen=True)
@@ -161,9 +169,11 @@ def build_program(
     language: str,
     reserved: frozenset[str],
     spec_file: str,
+    linear: bool = False,
 ) -> Program:
     """The functions of ``derivation`` with names for ``language`` (``reserved``: its keywords and the
-    names the printer uses), ready to print."""
+    names the printer uses), ready to print; with ``linear`` also the linear model's K(q) and D(q)
+    (:func:`linear_terms`)."""
     system = derivation.system
     if derivation.mass_matrix is None:
         from tutgen.errors import DerivationError
@@ -267,6 +277,25 @@ def build_program(
             tau + q_vec - c_vec - g_vec,
         ),
     ]
+    if linear:
+        stiffness, damping = linear_terms(derivation)
+        results += [
+            (
+                "linear_stiffness",
+                "K(q*) = d(G - Q)/dq at q_dot = 0: about an equilibrium q*, "
+                "H dq_ddot + D dq_dot + K dq = dtau (n x n).",
+                ("q",),
+                stiffness,
+                None,
+            ),
+            (
+                "linear_damping",
+                "D(q*) = -dQ/dq_dot at q_dot = 0, the linear model's damping (n x n).",
+                ("q",),
+                damping,
+                None,
+            ),
+        ]
     functions = []
     for name, doc, args, result, solve in results:
         functions.append(
@@ -293,6 +322,23 @@ def build_program(
         renamed=renamed,
         route=route,
     )
+
+
+def linear_terms(derivation: Derivation) -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix]:
+    """K = d(G - Q)/dq and D = -dQ/dq_dot, both at q_dot = 0: linearised about an equilibrium (q*, 0)
+    (G - Q = tau* there, q_ddot* = 0), H q_ddot + C q_dot + G - Q = tau becomes
+    H(q*) dq_ddot + D(q*) dq_dot + K(q*) dq = dtau; C q_dot is quadratic in q_dot and drops out.
+    G is the derivation's (expanded on the serial route), so K has the derivation's own form."""
+    system = derivation.system
+    q = [c.q for c in system.coordinates]
+    qd = [c.qd for c in system.coordinates]
+    n = len(q)
+    g_vec = derivation.gravity_vector if derivation.gravity_vector is not None else sp.zeros(n, 1)
+    q_vec = derivation.generalized_forces if derivation.generalized_forces is not None else sp.zeros(n, 1)
+    rest = {s: sp.Integer(0) for s in qd}
+    stiffness = sp.ImmutableMatrix(n, n, lambda i, j: sp.diff(g_vec[i] - q_vec[i], q[j]).xreplace(rest))
+    damping = sp.ImmutableMatrix(n, n, lambda i, j: -sp.diff(q_vec[i], qd[j]).xreplace(rest))
+    return stiffness, damping
 
 
 def _function(

@@ -32,8 +32,9 @@ def plan_code_output(spec: Path, output: str | Path, language: str, *, force: bo
     return target
 
 
-def code_for_spec(spec: Path, language: str, timeout: float | None = None) -> str:
-    """The code of ``spec``'s dynamics in ``language``, all within ``timeout`` seconds."""
+def code_for_spec(spec: Path, language: str, timeout: float | None = None, linear: bool = False) -> str:
+    """The code of ``spec``'s dynamics in ``language`` (with ``linear``, also the linear model), all
+    within ``timeout`` seconds."""
     from tutgen.engine.pipeline import derive
     from tutgen.limits import deadline, stage
     from tutgen.spec.validate import load_system
@@ -44,4 +45,4 @@ def code_for_spec(spec: Path, language: str, timeout: float | None = None) -> st
         stage("derivation")
         derivation = derive(system, "lagrange")
         stage("code generation", language)
-        return generate_code(derivation, language, spec.name)
+        return generate_code(derivation, language, spec.name, linear)
