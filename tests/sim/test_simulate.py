@@ -200,3 +200,19 @@ def test_help_imports_neither_scipy_nor_matplotlib() -> None:
     )
     out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, cwd=ROOT, check=True)
     assert "HEAVY []" in out.stdout, out.stdout[-500:]
+
+
+def test_a_failed_energy_check_is_exit_8_with_the_files_written(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import tutgen.sim.run
+
+    # the check compares the drift with DRIFT_FACTOR x rtol: a factor of 1e-9 makes any real drift fail
+    monkeypatch.setattr(tutgen.sim.run, "DRIFT_FACTOR", 1e-9)
+    spec = tmp_path / "p.yaml"
+    spec.write_text(PENDULUM.format(extra="", more="simulate: {t: [0, 1], q0: {theta: 0.5}, samples: 11}"))
+    result = run("simulate", spec, "-o", tmp_path / "out", "--no-plots")
+    assert result.exit_code == 8, result.output
+    assert "energy check failed" in result.output
+    doc = json.loads((tmp_path / "out" / "p.trajectory.json").read_text())
+    assert doc["energy_check"]["passed"] is False and doc["energy_check"]["conservative"] is True
