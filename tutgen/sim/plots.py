@@ -33,7 +33,7 @@ def _figure(width: float, height: float):  # noqa: ANN202 - matplotlib's Figure,
 
     # fixed margins: constrained layout costs seconds per figure on a loaded machine
     fig = Figure(figsize=(width, height), dpi=_DPI)
-    fig.subplots_adjust(left=0.11, right=0.98, top=0.93, bottom=0.09, wspace=0.35, hspace=0.25)
+    fig.subplots_adjust(left=0.14, right=0.98, top=0.93, bottom=0.09, wspace=0.35, hspace=0.25)
     return fig
 
 
