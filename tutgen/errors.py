@@ -15,6 +15,9 @@ EXIT_USAGE = 2
 EXIT_INVALID_SPEC = 3
 EXIT_CANNOT_DERIVE = 4
 EXIT_METHODS_DISAGREE = 5
+# 6 is tutgen.render.pdf.EXIT_PDF_FAILED
+EXIT_SIMULATION_STOPPED = 7
+EXIT_SIMULATION_CHECK = 8
 EXIT_INTERNAL = 70
 
 
@@ -137,6 +140,29 @@ class DerivationTimeout(DerivationError):
                 f"it was at: {stage}, {step})"
             )
         super().__init__(f"{text}; simplify the spec or raise --timeout")
+
+
+class SimulationError(TutgenError):
+    """`tutgen simulate` could not integrate to the end: a singular mass matrix at a state along the way
+    (the trajectory so far is written), the integrator failed, or ``--timeout`` ran out."""
+
+    exit_code = EXIT_SIMULATION_STOPPED
+
+    def __init__(self, message: str, location: Location | None = None) -> None:
+        self.location = location
+        self.message = message
+        super().__init__(message)
+
+    def __str__(self) -> str:
+        where = f"{self.location}: " if self.location else ""
+        return f"{where}error: {self.message}"
+
+
+class SimulationCheckError(SimulationError):
+    """A simulation ran to the end but failed its own check: the energy of a system without dissipation
+    or inputs drifted by more than 100 times the integrator's tolerance (the outputs are written)."""
+
+    exit_code = EXIT_SIMULATION_CHECK
 
 
 #: What a shell reports for a program stopped by SIGINT (128 + 2) and by SIGTERM (128 + 15).

@@ -10,7 +10,7 @@ import sys
 
 import typer
 
-from tutgen.cli import check, figure, schema_cmd, sheet, solve, validate
+from tutgen.cli import check, code, figure, schema_cmd, sheet, simulate, solve, validate
 from tutgen.cli.errors import install_signal_handlers, set_debug
 from tutgen.version import __version__
 
@@ -40,7 +40,8 @@ def main(
     """Worked solutions for rigid-body and robot dynamics problems, from a short YAML spec.
 
     Exit codes: 0 ok, 1 answers wrong (check), 2 usage error, 3 invalid spec,
-    4 valid spec that tutgen cannot derive, 70 internal error, 130 interrupted, 143 terminated.
+    4 valid spec that tutgen cannot derive, 7 simulation stopped early,
+    8 simulation failed its energy check, 70 internal error, 130 interrupted, 143 terminated.
     """
     set_debug(debug)
     install_signal_handlers()
@@ -52,6 +53,8 @@ app.command(name="check")(check.check)
 app.command(name="sheet")(sheet.sheet)
 app.command(name="figure")(figure.figure)  # tutgen/cli/figure.py
 app.command(name="validate")(validate.validate)  # tutgen/cli/validate.py
+app.command(name="simulate")(simulate.simulate)  # tutgen/cli/simulate.py (scipy, matplotlib imported inside)
+app.command(name="code")(code.code)  # tutgen/cli/code.py
 
 
 def run() -> None:

@@ -583,6 +583,31 @@ AskItem = Literal[
 ]
 
 
+class SimulateSpec(SpecModel):
+    """What `tutgen simulate` integrates (docs/simulate.md)."""
+
+    t: list[Expr] | None = Field(
+        None, description="The interval [start, end] in seconds, e.g. [0, 10] or ['0 s', '2 min'] (default [0, 10])."
+    )
+    q0: dict[Name, Expr] = Field(
+        default_factory=dict, description="The initial value of every coordinate, e.g. {theta: 30 deg, x: 0.1 m}."
+    )
+    qd0: dict[Name, Expr] = Field(
+        default_factory=dict, description="Initial rates, e.g. {theta: 1 rad/s} (default 0 for each coordinate)."
+    )
+    inputs: dict[Name, Expr] = Field(
+        default_factory=dict,
+        description="Parameters without a value as expressions of time t, the parameters, the coordinates and "
+        "their rates, e.g. {tau: 2*sin(t), F: -k_p*x - k_d*x_dot}.",
+    )
+    samples: int | None = Field(
+        None,
+        description="How many equally spaced instants the trajectory is written at (default 1001).",
+        ge=2,
+        le=1_000_000,
+    )
+
+
 class FigureSpec(SpecModel):
     """How the problem's figure is drawn (docs/figures.md)."""
 
@@ -647,6 +672,7 @@ class SpecDoc(SpecModel):
     energy: EnergySpec | None = None
     ask: list[AskItem] | None = Field(None, description="What to derive (default: everything that applies).")
     figure: FigureSpec | None = Field(None, description="How the figure is drawn, or the instructor's own picture.")
+    simulate: SimulateSpec | None = Field(None, description="Initial conditions and inputs for `tutgen simulate`.")
 
 
 def json_schema() -> dict[str, Any]:

@@ -1,0 +1,406 @@
+"""The derived model as straight-line programs, one per generated function, free of any language.
+
+A :class:`Program` is what every printer of :mod:`tutgen.codegen` reads: the functions to write (H(q),
+C(q, q_dot) q_dot, C(q, q_dot), G(q), Q(q, q_dot), the potential energy, inverse and forward dynamics),
+each a list of assignments ``x_k = expression`` in evaluation order and the entries of its result in
+those names. Common subexpressions are eliminated with ``sympy.cse``; a serial arm's derivation
+carries the same dynamics as a short recursive program already (:mod:`tutgen.engine.recursive`), and
+H, C q_dot and G are taken from it instead of from the expanded entries.
+
+Names: every symbol the code uses is a name the spec declared (a coordinate ``theta``, its rate
+``theta_dot`` and acceleration ``theta_ddot``, a parameter ``m1``), renamed only where it is a
+keyword or a name of the target language (:func:`target_names`); temporaries are ``x0, x1, ...``
+(another letter if the spec declares such names). No other spec text (title, statement,
+descriptions) reaches the code.
+
+Conventions of the generated functions (the same in every language):
+
+- ``inverse_dynamics(q, qd, qdd, p)`` is tau = H q_ddot + C q_dot + G - Q(q, q_dot): the generalized
+  force along each coordinate needed beyond the spec's own forces (springs and gravity are in G;
+  dampers, loads and the spec's generalized forces, with their parameters from ``p``, in Q);
+- ``forward_dynamics(q, qd, tau, p)`` is its inverse, q_ddot = H^-1 (tau + Q - C q_dot - G);
+- matrices are row-major; parameters without a value in the spec have no default.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+
+import sympy as sp
+
+from tutgen.engine.derivation import Derivation
+
+__all__ = [
+    "Function",
+    "Parameter",
+    "Program",
+    "build_program",
+    "linear_terms",
+    "safe_file_name",
+    "target_names",
+]
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A parameter of the generated code: its name there, its spec name and value (None: none given)."""
+
+    name: str
+    spec_name: str
+    value: float | None
+
+
+@dataclass(frozen=True)
+class Function:
+    """One generated function.
+
+    ``arguments`` are the vector arguments it takes, in order, from ``q``, ``qd``, ``qdd`` and ``tau``
+    (the parameters ``p`` always come last); ``uses`` the names it reads from them and from ``p``.
+    ``assignments`` are ``(name, expression)`` in evaluation order; ``result`` is the output matrix
+    (``shape`` rows x cols) in those names. ``solve`` marks forward dynamics: the result is then
+    ``(H, rhs)`` and the function returns H^-1 rhs.
+    """
+
+    name: str
+    doc: str
+    arguments: tuple[str, ...]
+    assignments: tuple[tuple[sp.Symbol, sp.Expr], ...]
+    result: sp.ImmutableMatrix
+    solve: sp.ImmutableMatrix | None = None  # forward dynamics: the right-hand side, result is H
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        m = self.solve if self.solve is not None else self.result
+        return (m.rows, m.cols)
+
+    def free_symbols(self) -> set[sp.Symbol]:
+        defined = {s for s, _ in self.assignments}
+        used: set[sp.Symbol] = set()
+        for _, e in self.assignments:
+            used |= e.free_symbols
+        used |= self.result.free_symbols
+        if self.solve is not None:
+            used |= self.solve.free_symbols
+        return used - defined
+
+
+@dataclass(frozen=True)
+class Program:
+    """Everything a printer needs: names in the target language and the functions to write.
+
+    ``coordinates``, ``rates`` and ``accelerations`` are the names of q_i, q_dot_i and q_ddot_i
+    (vector entry i of ``q``, ``qd``, ``qdd``); ``renamed`` lists the spec names changed because
+    they are keywords or reserved names of the language (said in the header).
+    """
+
+    module: str
+    spec_file: str
+    language: str
+    coordinates: tuple[str, ...]
+    rates: tuple[str, ...]
+    accelerations: tuple[str, ...]
+    forces: tuple[str, ...]  # the entries of forward dynamics' tau
+    parameters: tuple[Parameter, ...]
+    functions: tuple[Function, ...]
+    renamed: tuple[tuple[str, str], ...]
+    route: str  # how H, C q_dot and G were obtained (said in the header)
+
+    @property
+    def n(self) -> int:
+        return len(self.coordinates)
+
+
+#: The vector arguments and the locals of every generated function: spec names equal to one are renamed.
+RESERVED_LOCALS = frozenset(
+    {"q", "qd", "qdd", "tau", "p", "out", "H", "rhs", "L", "np", "numpy", "math", "i", "j", "shape", "dyn", "t"}
+)
+
+
+def safe_file_name(name: str) -> str:
+    """A spec file's name as it may appear in a comment: letters, digits, ``.``, ``-`` and ``_`` only."""
+    return re.sub(r"[^A-Za-z0-9._-]", "_", name)[:100] or "spec"
+
+
+def module_name(stem: str) -> str:
+    """An identifier for the generated module (and the prefix of C names) from the spec file's stem."""
+    name = re.sub(r"[^A-Za-z0-9_]", "_", stem)[:60]
+    if not name or not name[0].isalpha():
+        name = "m_" + name
+    return name
+
+
+def target_names(names: Iterable[str], reserved: frozenset[str]) -> dict[str, str]:
+    """Each spec name as an identifier of the language: unchanged, or with ``_`` appended (repeatedly)
+    when it is in ``reserved`` or the renamed form is taken by another name."""
+    names = list(names)
+    taken = set(names)
+    out: dict[str, str] = {}
+    for name in names:
+        new = name
+        while new in reserved or (new != name and new in taken):
+            new += "_"
+        taken.add(new)
+        out[name] = new
+    return out
+
+
+def _temporary_prefix(declared: Iterable[str]) -> str:
+    """A letter for the temporaries x0, x1, ... that no declared name uses as ``<letter><digits>``."""
+    declared = set(declared)
+    for letter in "xwvzy":
+        if not any(re.fullmatch(rf"{letter}\d+", d) for d in declared):
+            return letter
+    return "tmp_x"  # pragma: no cover - a spec that declares x0, w0, v0, z0 and y0
+
+
+def _float(value: sp.Expr | None) -> float | None:
+    if value is None:
+        return None
+    try:
+        return float(value)
+    except TypeError:
+        return None
+
+
+def build_program(
+    derivation: Derivation,
+    language: str,
+    reserved: frozenset[str],
+    spec_file: str,
+    linear: bool = False,
+) -> Program:
+    """The functions of ``derivation`` with names for ``language`` (``reserved``: its keywords and the
+    names the printer uses), ready to print; with ``linear`` also the linear model's K(q) and D(q)
+    (:func:`linear_terms`)."""
+    system = derivation.system
+    if derivation.mass_matrix is None:
+        from tutgen.errors import DerivationError
+
+        raise DerivationError("the spec has no coordinates: there are no dynamics to generate code for", system.origin)
+    coords = system.coordinates
+    spec_names = [c.name for c in coords]
+    spec_names += [f"{c.name}_dot" for c in coords] + [f"{c.name}_ddot" for c in coords]
+    spec_names += [p.name for p in system.parameters]
+    names = target_names(spec_names, reserved | RESERVED_LOCALS)
+    renamed = tuple((a, b) for a, b in names.items() if a != b)
+    n = len(coords)
+
+    rename: dict[sp.Symbol, sp.Symbol] = {}
+    for c in coords:
+        rename[c.q] = sp.Symbol(names[c.name])
+        rename[c.qd] = sp.Symbol(names[f"{c.name}_dot"])
+        rename[c.qdd] = sp.Symbol(names[f"{c.name}_ddot"])
+    for p in system.parameters:
+        rename[p.symbol] = sp.Symbol(names[p.name])
+    letter = _temporary_prefix(names.values())
+    parameters = tuple(Parameter(names[p.name], p.name, _float(p.value)) for p in system.parameters)
+
+    def renamed_matrix(m: sp.MatrixBase) -> sp.ImmutableMatrix:
+        return sp.ImmutableMatrix(m.xreplace(rename))
+
+    # the entries of forward dynamics' tau argument, as locals named after their coordinates
+    taken = set(names.values())
+    tau_names = []
+    for c in coords:
+        local = f"tau_{names[c.name]}"
+        while local in taken or local in reserved:
+            local += "_"
+        taken.add(local)
+        tau_names.append(local)
+    tau = sp.ImmutableMatrix([sp.Symbol(t) for t in tau_names])
+    hm = derivation.mass_matrix
+    q_vec = derivation.generalized_forces if derivation.generalized_forces is not None else sp.zeros(n, 1)
+    g_vec = derivation.gravity_vector if derivation.gravity_vector is not None else sp.zeros(n, 1)
+    c_vec = derivation.coriolis_vector if derivation.coriolis_vector is not None else sp.zeros(n, 1)
+    qdd = sp.ImmutableMatrix([c.qdd for c in coords])
+    prog = derivation.program
+    route = "sympy.cse of the derived entries"
+    defs: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    if prog is not None:
+        # the recursive program gives H, C q_dot and G of the links and gravity; the springs' part of G
+        # (which the serial route adds to its expanded G) is dU_springs/dq
+        route = "the derivation's recursive program (Newton-Euler for C q_dot and G, composite bodies for H)"
+        defs = prog.definitions
+        u_springs = sp.Add(*[e for _, e in derivation.spring_energies])
+        springs = sp.ImmutableMatrix([sp.diff(u_springs, c.q) for c in coords])
+        hm, c_vec, g_vec = prog.mass_matrix, prog.coriolis_vector, prog.gravity_vector + springs
+
+    results: list[tuple[str, str, tuple[str, ...], sp.MatrixBase, sp.MatrixBase | None]] = [
+        ("mass_matrix", "H(q), the mass matrix (n x n).", ("q",), hm, None),
+        ("coriolis_vector", "C(q, q_dot) q_dot, the Coriolis and centrifugal terms (n).", ("q", "qd"), c_vec, None),
+    ]
+    if derivation.coriolis_matrix is not None and prog is None:
+        results.append(
+            (
+                "coriolis_matrix",
+                "C(q, q_dot) with C q_dot the Coriolis vector, from the Christoffel symbols of H (n x n).",
+                ("q", "qd"),
+                derivation.coriolis_matrix,
+                None,
+            )
+        )
+    results += [
+        ("gravity_vector", "G(q) = dU/dq, gravity and springs (n).", ("q",), g_vec, None),
+        (
+            "generalized_forces",
+            "Q(q, q_dot), dampers, loads and given generalized forces (n).",
+            ("q", "qd"),
+            q_vec,
+            None,
+        ),
+    ]
+    if derivation.potential_energy is not None:
+        results.append(
+            (
+                "potential_energy",
+                "U(q), the potential energy of gravity and springs (1 x 1).",
+                ("q",),
+                sp.ImmutableMatrix([[derivation.potential_energy]]),
+                None,
+            )
+        )
+    results += [
+        (
+            "inverse_dynamics",
+            "tau = H q_ddot + C q_dot + G - Q: the generalized forces that give q_ddot (n).",
+            ("q", "qd", "qdd"),
+            hm * qdd + c_vec + g_vec - q_vec,
+            None,
+        ),
+        (
+            "forward_dynamics",
+            "q_ddot = H^-1 (tau + Q - C q_dot - G) (n); tau as in inverse_dynamics.",
+            ("q", "qd", "tau"),
+            hm,
+            tau + q_vec - c_vec - g_vec,
+        ),
+    ]
+    if linear:
+        stiffness, damping = linear_terms(derivation)
+        results += [
+            (
+                "linear_stiffness",
+                "K(q*) = d(G - Q)/dq at q_dot = 0: about an equilibrium q*, "
+                "H dq_ddot + D dq_dot + K dq = dtau (n x n).",
+                ("q",),
+                stiffness,
+                None,
+            ),
+            (
+                "linear_damping",
+                "D(q*) = -dQ/dq_dot at q_dot = 0, the linear model's damping (n x n).",
+                ("q",),
+                damping,
+                None,
+            ),
+        ]
+    functions = []
+    for name, doc, args, result, solve in results:
+        functions.append(
+            _function(
+                name,
+                doc,
+                args,
+                renamed_matrix(result),
+                renamed_matrix(solve) if solve is not None else None,
+                tuple((rename.setdefault(s, s), e.xreplace(rename)) for s, e in defs),
+                letter,
+            )
+        )
+    return Program(
+        module=module_name(spec_file.rsplit(".", 1)[0]),
+        spec_file=safe_file_name(spec_file),
+        language=language,
+        coordinates=tuple(names[c.name] for c in coords),
+        rates=tuple(names[f"{c.name}_dot"] for c in coords),
+        accelerations=tuple(names[f"{c.name}_ddot"] for c in coords),
+        forces=tuple(tau_names),
+        parameters=parameters,
+        functions=tuple(functions),
+        renamed=renamed,
+        route=route,
+    )
+
+
+def linear_terms(derivation: Derivation) -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix]:
+    """K = d(G - Q)/dq and D = -dQ/dq_dot, both at q_dot = 0: linearised about an equilibrium (q*, 0)
+    (G - Q = tau* there, q_ddot* = 0), H q_ddot + C q_dot + G - Q = tau becomes
+    H(q*) dq_ddot + D(q*) dq_dot + K(q*) dq = dtau; C q_dot is quadratic in q_dot and drops out.
+    G is the derivation's (expanded on the serial route), so K has the derivation's own form."""
+    system = derivation.system
+    q = [c.q for c in system.coordinates]
+    qd = [c.qd for c in system.coordinates]
+    n = len(q)
+    g_vec = derivation.gravity_vector if derivation.gravity_vector is not None else sp.zeros(n, 1)
+    q_vec = derivation.generalized_forces if derivation.generalized_forces is not None else sp.zeros(n, 1)
+    rest = {s: sp.Integer(0) for s in qd}
+    stiffness = sp.ImmutableMatrix(n, n, lambda i, j: sp.diff(g_vec[i] - q_vec[i], q[j]).xreplace(rest))
+    damping = sp.ImmutableMatrix(n, n, lambda i, j: -sp.diff(q_vec[i], qd[j]).xreplace(rest))
+    return stiffness, damping
+
+
+def _function(
+    name: str,
+    doc: str,
+    arguments: tuple[str, ...],
+    result: sp.ImmutableMatrix,
+    solve: sp.ImmutableMatrix | None,
+    definitions: Sequence[tuple[sp.Symbol, sp.Expr]],
+    letter: str,
+) -> Function:
+    """One function: the program's definitions it needs (renamed x_k in order of use), then ``sympy.cse``
+    of what is left."""
+    outputs = [result] + ([solve] if solve is not None else [])
+    assignments: list[tuple[sp.Symbol, sp.Expr]] = []
+    if definitions:
+        needed = _needed(definitions, outputs)
+        fresh = {s: sp.Symbol(f"{letter}{k}") for k, (s, _) in enumerate(needed)}
+        assignments = [(fresh[s], e.xreplace(fresh)) for s, e in needed]
+        outputs = [m.xreplace(fresh) for m in outputs]
+        start = len(assignments)
+    else:
+        start = 0
+    flat = [e for m in outputs for e in m]
+    symbols = (sp.Symbol(f"{letter}{k}") for k in range(start, 10**9))
+    replacements, reduced = sp.cse(flat, symbols=symbols, order="none")
+    assignments += replacements
+    it = iter(reduced)
+    rebuilt = [sp.ImmutableMatrix(m.rows, m.cols, [next(it) for _ in range(m.rows * m.cols)]) for m in outputs]
+    return Function(
+        name=name,
+        doc=doc,
+        arguments=arguments,
+        assignments=tuple(assignments),
+        result=rebuilt[0],
+        solve=rebuilt[1] if solve is not None else None,
+    )
+
+
+def _needed(
+    definitions: Sequence[tuple[sp.Symbol, sp.Expr]], matrices: Sequence[sp.MatrixBase]
+) -> list[tuple[sp.Symbol, sp.Expr]]:
+    index = {s: i for i, (s, _) in enumerate(definitions)}
+    todo = [s for m in matrices for e in m for s in e.free_symbols if s in index]
+    used: set[sp.Symbol] = set()
+    while todo:
+        s = todo.pop()
+        if s in used:
+            continue
+        used.add(s)
+        todo += [t for t in definitions[index[s]][1].free_symbols if t in index and t not in used]
+    return [d for d in definitions if d[0] in used]
+
+
+def uses(function: Function, program: Program) -> Mapping[str, list[tuple[int, str]]]:
+    """Which entries of each vector argument (and which parameters) ``function`` reads, in order:
+    ``{"q": [(0, "theta"), ...], "p": [(-1, "m1"), ...]}``."""
+    free = {s.name for s in function.free_symbols()}
+    table: dict[str, list[tuple[int, str]]] = {}
+    vectors = {"q": program.coordinates, "qd": program.rates, "qdd": program.accelerations, "tau": program.forces}
+    for arg in function.arguments:
+        if arg in vectors:
+            table[arg] = [(i, name) for i, name in enumerate(vectors[arg]) if name in free]
+    table["p"] = [(-1, prm.name) for prm in program.parameters if prm.name in free]
+    return table
