@@ -38,9 +38,13 @@ def figure_view(system: System, drawing: Drawing | None = None) -> dict[str, Any
 
     ``tikz``: the picture for LaTeX ("" without a generated drawing); ``svg``: the SVG's relative
     name for Markdown; ``file``/``file_kind``: the instructor's picture, as written in the spec
-    (``file_tex``: whether pdflatex can include it, PNG, JPEG or PDF; ``file_md``: whether a
-    browser shows it, PNG, JPEG or SVG); ``caption``: raw text; ``remarks``: what the drawing adjusted.
+    (``file_tex``: whether pdflatex can include it, PNG, JPEG or PDF; ``file_tex_name``: the safe name
+    it is copied in under when tutgen compiles the PDF, :func:`tutgen.figure.picture.picture_name`;
+    ``file_plain``: whether the path as written may also go into TeX, for a ``.tex`` compiled beside
+    the spec; ``file_md``: whether a browser shows it, PNG, JPEG or SVG); ``caption``: raw text;
+    ``remarks``: what the drawing adjusted.
     """
+    from tutgen.figure.picture import TEX_EXTENSIONS, picture_name
     from tutgen.figure.tikz import to_tikz
 
     drawing = drawing if drawing is not None else drawing_of(system)
@@ -52,12 +56,23 @@ def figure_view(system: System, drawing: Drawing | None = None) -> dict[str, Any
         "svg": svg_name(system) if drawing is not None else "",
         "file": file.path if file is not None else "",
         "file_kind": file.kind.value if file is not None else "",
-        # pdflatex includes PNG, JPEG and PDF; the path goes into TeX as written, so only plain names
-        "file_tex": file is not None and file.kind is not ImageKind.SVG and _PLAIN.fullmatch(file.path) is not None,
+        # pdflatex includes PNG, JPEG and PDF, by a name tutgen makes (copied into the compile folder)
+        "file_tex": file is not None and file.kind in TEX_EXTENSIONS,
+        "file_tex_name": picture_name(file) if file is not None and file.kind in TEX_EXTENSIONS else "",
+        # the path as written goes into TeX only when it is plain and its extension says its kind
+        "file_plain": file is not None and file.kind in TEX_EXTENSIONS and _is_plain(file.path, file.kind),
         "file_md": file is not None and file.kind is not ImageKind.PDF,
         "caption": system.title,
         "remarks": list(drawing.remarks) if drawing is not None else [],
     }
+
+
+def _is_plain(path: str, kind: ImageKind) -> bool:
+    """Whether ``path`` can be written in TeX as it is: plain characters, and an extension pdflatex
+    reads as the file's kind (it picks the graphics driver by the extension)."""
+    suffix = path.rsplit(".", 1)[-1].lower() if "." in path.rsplit("/", 1)[-1] else ""
+    wanted = {ImageKind.PNG: ("png",), ImageKind.JPEG: ("jpg", "jpeg"), ImageKind.PDF: ("pdf",)}
+    return _PLAIN.fullmatch(path) is not None and suffix in wanted.get(kind, ())
 
 
 def figure_json(system: System, drawing: Drawing | None = None) -> dict[str, Any]:
@@ -111,4 +126,4 @@ def render_figure(spec: Path, fmt: str) -> str | bytes:
         return tex
     from tutgen.render.pdf import compile_pdf
 
-    return compile_pdf(tex)
+    return compile_pdf(tex)  # the figure alone: the generated drawing, never the spec's picture
