@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from tutgen.figure.canvas import MASS, PIN, SLIDER, Canvas
+from tutgen.figure.canvas import MASS, PIN, Canvas
 from tutgen.figure.geometry import convex_hull, points_box
 from tutgen.figure.pose import Vec
 from tutgen.figure.scene import Box, Fill, Point, Stroke
@@ -41,7 +41,8 @@ class BodyDrawing(Canvas):
         self.hatch((x - 0.36, y - 0.34 * k), (x + 0.36, y - 0.34 * k), (0.0, -k))
         self.obstacles.append(Box(x - 0.36, min(y, y - 0.5 * k), x + 0.36, max(y, y - 0.5 * k)))
 
-    def draw_prismatic(self, j: Joint) -> None:
+    def draw_prismatic(self, j: Joint, rail: bool = True) -> None:
+        """A slider block on its rail (``rail`` False: the block alone, as a free body is drawn)."""
         pose = self.pose
         child_pos = pose.frames[j.child][0]
         base = pose.joint_at[j.name]
@@ -58,8 +59,10 @@ class BodyDrawing(Canvas):
         nrm = np.array([-u[1], u[0]])
         if nrm[1] > 0 or (abs(nrm[1]) < 1e-9 and nrm[0] > 0):
             nrm = -nrm  # the rail below (or beside) the slider
-        w, h = SLIDER
-        if j.parent == GROUND:
+        w, h = self.slider
+        if not rail:
+            pass
+        elif j.parent == GROUND:
             off = nrm * (h / 2 + 0.02)
             self.hatch(tuple(lo + off), tuple(hi + off), tuple(nrm))
         else:
@@ -77,11 +80,8 @@ class BodyDrawing(Canvas):
 
     def draw_links(self) -> None:
         pose = self.pose
-        for j in self.s.joints:
-            if j.kind is not JointKind.PRISMATIC and j.parent != GROUND:
-                pass
         for b in self.s.bodies:
-            if b.name not in pose.by_child:
+            if b.name not in pose.by_child or (self.only is not None and b.name != self.only):
                 continue
             o = pose.frames[b.name][0]
             j = pose.by_child[b.name]
@@ -104,12 +104,14 @@ class BodyDrawing(Canvas):
                 if np.linalg.norm(centre - o) * self.scale > 1e-3:
                     self.line([self.P(o), self.P(centre)], Stroke.OUTLINE)
         for j in self.s.joints:
-            if j.kind is JointKind.REVOLUTE:
+            if j.kind is JointKind.REVOLUTE and (self.only is None or self.only in (j.parent, j.child)):
                 self.circle(self.P(self.pose.joint_at[j.name]), PIN)
 
     def draw_bodies(self) -> None:
         pose = self.pose
         for b in self.s.bodies:
+            if self.only is not None and b.name != self.only:
+                continue
             composite = len(b.parts) > 1
             for part in b.parts:
                 at3 = pose.point(b.name, self.num.vec(part.at))

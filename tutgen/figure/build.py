@@ -1,6 +1,6 @@
 """The drawing of a system: its model, placed at one pose, projected, and laid out as primitives.
 
-Steps (each a method of :class:`_Builder` and the classes it builds on, in drawing order):
+Steps (each a method of :class:`SystemBuilder` and the classes it builds on, in drawing order):
 
 1. numbers: every parameter gets a number (its value, or a drawing size for a symbolic length,
    ``figure.sizes`` first), every coordinate a drawing value (``figure.at`` first; otherwise angles of
@@ -45,14 +45,14 @@ def draw_system(system: System) -> Drawing:
     When the default pose makes two links overlap (a chain folding back on itself), the next sign
     pattern of the default angles is tried, and the change is remarked on; a pose the spec gives
     (``figure.at``) is kept as it is, with a remark."""
-    drawing = _Builder(system).build()
+    drawing = SystemBuilder(system).build()
     if not _links_overlap(drawing):
         return drawing
     given = {name for name, _v in (system.figure.at if system.figure else ())}
     if given:
         return _remarked(drawing, "two links overlap at the pose given by figure.at")
     for signs in POSE_SIGNS[1:]:
-        other = _Builder(system, signs).build()
+        other = SystemBuilder(system, signs).build()
         if not _links_overlap(other):
             return _remarked(other, "the default pose made two links overlap; some angles are drawn negative")
     return _remarked(drawing, "two links overlap at every default pose tried")
@@ -85,7 +85,7 @@ def _links_overlap(drawing: Drawing) -> bool:
     return False
 
 
-class _Builder(AxesDrawing):
+class SystemBuilder(AxesDrawing):
     """One drawing of a system, built step by step by :meth:`build`."""
 
     # -- 5. primitives -------------------------------------------------------------------------

@@ -59,6 +59,8 @@ class Canvas:
         self.requests: list[tuple[str, str, Point, Point]] = []  # names, tex, anchor, preferred direction
         self.obstacles: list[Box] = []
         self.remarks: list[str] = []
+        self.slider = SLIDER  # the block's size; a free-body diagram draws it larger
+        self.only: str | None = None  # a free-body diagram draws this one body (tutgen/figure/freebody.py)
         self.latex_of = {p.symbol: name_tex(p.name, p.latex) for p in system.parameters}
         self.latex_of.update({c.q: name_tex(c.name, c.latex) for c in system.coordinates})
 
@@ -398,7 +400,7 @@ class Canvas:
         if n < 1e-9:
             return p
         u = d / n
-        return (float(p[0] + u[0] * SLIDER[0] / 2), float(p[1] + u[1] * SLIDER[0] / 2))
+        return (float(p[0] + u[0] * self.slider[0] / 2), float(p[1] + u[1] * self.slider[0] / 2))
 
     def page_dir(self, at: Vec, world_dir: Vec) -> Point | None:
         a = np.array(self.P(at))

@@ -107,16 +107,25 @@ def svg_file(system: System) -> tuple[str, str] | None:
 FIGURE_FORMATS = {".svg": "svg", ".tex": "tex", ".pdf": "pdf"}
 
 
-def render_figure(spec: Path, fmt: str) -> str | bytes:
+def render_figure(spec: Path, fmt: str, body: str | None = None) -> str | bytes:
     """A spec's figure alone: ``svg`` (text), ``tex`` (a LaTeX document of the picture) or ``pdf``
-    (that document compiled; :class:`tutgen.render.pdf.PdfError` if it cannot be)."""
+    (that document compiled; :class:`tutgen.render.pdf.PdfError` if it cannot be). With ``body``, the
+    free-body diagram of that body instead (:mod:`tutgen.figure.freebody`)."""
     from tutgen.errors import UsageError
     from tutgen.figure.svg import to_svg
     from tutgen.figure.tikz import tikz_document
     from tutgen.spec.validate import load_system
 
     system = load_system(spec)
-    drawing = draw_system(system)  # also with `generated: false`: asked for by name
+    if body is not None:
+        from tutgen.figure.freebody import free_body_diagram
+
+        try:
+            drawing = free_body_diagram(system, body)
+        except ValueError as err:
+            raise UsageError(f"--body: {err}") from None
+    else:
+        drawing = draw_system(system)  # also with `generated: false`: asked for by name
     if fmt == "svg":
         return to_svg(drawing, system.title)
     if fmt not in ("tex", "pdf"):
