@@ -35,7 +35,7 @@ from tutgen.figure.canvas import POSE_SIGNS
 from tutgen.figure.geometry import prim_box, segments_cross
 from tutgen.figure.labels import place_labels
 from tutgen.figure.pose import Pose
-from tutgen.figure.scene import Box, Drawing, Point, Polyline, Stroke
+from tutgen.figure.scene import Box, Drawing, Point, Polyline, Primitive, Stroke
 from tutgen.model.system import System
 
 
@@ -110,7 +110,9 @@ class SystemBuilder(AxesDrawing):
             if self.view == "oblique":
                 self.draw_frames()
         self.draw_gravity_and_axes()
-        labels = place_labels(self.requests, self.obstacles, self.prims, self.remarks)
+        leaders: list[Primitive] = []
+        labels = place_labels(self.requests, self.obstacles, self.prims, self.remarks, leaders)
+        self.prims += leaders
         box = None
         for prim in self.prims:
             b = prim_box(prim)

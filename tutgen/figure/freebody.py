@@ -33,7 +33,7 @@ from tutgen.figure.canvas import TARGET_SIZE
 from tutgen.figure.geometry import prim_box
 from tutgen.figure.labels import place_labels
 from tutgen.figure.pose import Pose
-from tutgen.figure.scene import Box, Drawing, Point
+from tutgen.figure.scene import Box, Drawing, Point, Primitive
 from tutgen.figure.texlabel import is_safe_tex, name_tex, word_tex
 from tutgen.model.system import Body, Endpoint, JointKind, System
 
@@ -305,7 +305,9 @@ class _FreeBodyBuilder(SystemBuilder):
                 f"body {body.name} is placed by its position, not by joints: the forces that keep it on its "
                 "path are not in the model and are not drawn"
             )
-        labels = place_labels(self.requests, self.obstacles, self.prims, self.remarks)
+        leaders: list[Primitive] = []
+        labels = place_labels(self.requests, self.obstacles, self.prims, self.remarks, leaders)
+        self.prims += leaders
         box: Box | None = None
         for b in [prim_box(p) for p in self.prims] + [lb.box for lb in labels]:
             box = b if box is None else box.union(b)
