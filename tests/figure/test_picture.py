@@ -132,3 +132,26 @@ def test_picture_is_in_the_pdf_of_the_solution(tmp_path: Path) -> None:
         ["pdfimages", "-list", str(tmp_path / "out.pdf")], capture_output=True, text=True, check=True
     ).stdout.splitlines()[2:]
     assert [(row.split()[3], row.split()[4]) for row in listed] == [("17", "11")]
+
+
+@pytest.mark.slow  # two PDF compiles (questions, solutions): ~5-11 s
+@needs_latex
+def test_picture_is_in_the_pdf_of_a_sheet(tmp_path: Path) -> None:
+    """A sheet's PDF (compiled in its own sealed folder, the sheet elsewhere than the spec) holds the
+    problem's own picture too: the questions and the solutions."""
+    from typer.testing import CliRunner
+
+    from tutgen.cli.main import app
+
+    _system(tmp_path, "pics/pendulum.png", _png(13, 7))
+    sheet = tmp_path / "sheet.yaml"
+    sheet.write_text("tutgen_sheet: 1\ntitle: Sheet\nproblems:\n  - spec.yaml\n", encoding="utf-8")
+    out = tmp_path / "out"
+    result = CliRunner().invoke(app, ["sheet", str(sheet), "-o", str(out), "-f", "pdf"])
+    assert result.exit_code == 0, result.output
+    pdfs = sorted(out.rglob("*.pdf"))
+    assert pdfs
+    for pdf in pdfs:
+        listed = subprocess.run(["pdfimages", "-list", str(pdf)], capture_output=True, text=True, check=True)
+        sizes = [(row.split()[3], row.split()[4]) for row in listed.stdout.splitlines()[2:]]
+        assert sizes == [("13", "7")], pdf.name
