@@ -196,3 +196,17 @@ def test_cli_figure_body_writes_the_free_body_diagram(tmp_path: Path) -> None:
     assert "<svg" in text and "R" in text
     bad = runner.invoke(app, ["figure", str(P03), "--body", "nope", "-o", str(tmp_path / "x.svg")])
     assert bad.exit_code == 2 and "no body 'nope'" in bad.output and not (tmp_path / "x.svg").exists()
+
+
+def test_free_body_views_give_each_body_its_tikz_and_svg() -> None:
+    from tutgen.figure.view import free_body_views
+
+    system = load_system(P03)
+    views = free_body_views(system)
+    assert [v["body"] for v in views] == ["cart", "pendulum"]
+    assert views[0]["svg"] == "p03-cart-pendulum.fbd-cart.svg"
+    assert "\\begin{tikzpicture}" in views[0]["tikz"] and "<svg" in views[0]["svg_text"]
+    assert "force:spring:wall" in views[0]["labels"]
+    own = free_body_views(system, {"cart": [BodyForce("only", "Q", vector=(1, 0, 0))]})
+    assert "force:only" in own[0]["labels"] and "force:spring:wall" not in own[0]["labels"]
+    assert free_body_views(system_of("tutorial-1:p08-spatial-rr")) == []  # spatial: none

@@ -7,13 +7,17 @@ written beside the ``.md`` by :mod:`tutgen.api`); the LaTeX solution holds the T
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from tutgen.figure.build import draw_system
 from tutgen.figure.scene import Drawing
 from tutgen.model.figure import ImageKind
 from tutgen.model.system import System
+
+if TYPE_CHECKING:
+    from tutgen.figure.freebody import BodyForce
 
 _PLAIN = re.compile(r"[A-Za-z0-9._/-]+")
 
@@ -101,6 +105,38 @@ def svg_file(system: System) -> tuple[str, str] | None:
     if drawing is None:
         return None
     return svg_name(system), to_svg(drawing, system.title)
+
+
+def free_body_views(system: System, forces: Mapping[str, Sequence[BodyForce]] | None = None) -> list[dict[str, Any]]:
+    """The free-body diagrams of a planar system's bodies (every body with a mass, in spec order), as
+    a template or the file writer needs them: ``body``; ``tikz`` (LaTeX); ``svg``, the relative name
+    of the SVG beside a Markdown solution (``<spec>.fbd-<body>.svg``), and ``svg_text``; ``labels`` and
+    ``remarks``. ``forces``: per body, the forces to draw instead of the model's own
+    (:func:`tutgen.figure.freebody.body_forces`), as the Newton–Euler step names them. A spatial
+    system gets none (its diagrams would need the oblique view's care)."""
+    from tutgen.figure.freebody import free_body_diagram
+    from tutgen.figure.svg import to_svg
+    from tutgen.figure.tikz import to_tikz
+
+    if not system.bodies or draw_system(system).view != "planar":
+        return []
+    stem = svg_name(system).removesuffix(".figure.svg")
+    out = []
+    for body in system.bodies:
+        if not body.parts:
+            continue
+        drawing = free_body_diagram(system, body.name, (forces or {}).get(body.name))
+        out.append(
+            {
+                "body": body.name,
+                "tikz": to_tikz(drawing),
+                "svg": f"{stem}.fbd-{body.name}.svg",
+                "svg_text": to_svg(drawing, f"{system.title}: {body.name}"),
+                "labels": sorted(drawing.names),
+                "remarks": list(drawing.remarks),
+            }
+        )
+    return out
 
 
 #: The formats of ``tutgen figure``, by the output's suffix.
