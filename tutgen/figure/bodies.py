@@ -156,8 +156,9 @@ class BodyDrawing(Canvas):
                     self.cylinder_rims(b, part, pts)
                 cx = sum(p[0] for p in hull) / len(hull)
                 cy = sum(p[1] for p in hull) / len(hull)
+                # the name inside the outline, where a textbook writes it; it is placed before the labels
+                # drawn later (loads, coordinates), which then keep off it
                 self.label(name, tex, (cx, cy), (0.0, 0.0))
-                self.obstacles.append(points_box([(cx - 0.05, cy - 0.05), (cx + 0.05, cy + 0.05)]))
 
     def toward_viewer(self) -> Vec:
         """The world direction the oblique view looks along, toward the viewer: the projection sends
