@@ -96,3 +96,22 @@ def test_long_arm_draws_each_z_axis_once_on_its_joint_axis() -> None:
             and math.dist(*q) > 0.3
         ]
         assert not along, f"a second arrow along the axis {pts}"
+
+
+def test_oblique_default_pose_shows_no_link_end_on() -> None:
+    """SCARA's arm at +40 degrees points at the viewer of the oblique view (seen at 0.4 of its length);
+    the figure takes the sign pattern that shows every link at least half its length, and says so."""
+    from tutgen.figure.build import END_ON, foreshortening
+    from tutgen.figure.canvas import POSE_SIGNS
+
+    system = load_system(SPECS / "arms" / "scara.yaml")
+    first = SystemBuilder(system, POSE_SIGNS[0])
+    first.build()
+    assert foreshortening(first) < END_ON  # the problem is real at the first pose
+    drawing = draw_system(system)
+    assert any("end-on" in r for r in drawing.remarks)
+    drawn = dict(drawing.at)
+    chosen = next(s for s in POSE_SIGNS if math.copysign(1, drawn["q1"]) == s[0] and s != POSE_SIGNS[0])
+    again = SystemBuilder(system, chosen)
+    again.build()
+    assert foreshortening(again) >= END_ON
