@@ -115,3 +115,21 @@ def test_oblique_default_pose_shows_no_link_end_on() -> None:
     again = SystemBuilder(system, chosen)
     again.build()
     assert foreshortening(again) >= END_ON
+
+
+def test_unknown_centres_of_mass_sit_on_their_frames_and_no_spokes_are_drawn() -> None:
+    """Stanford's coms are unknown points (cx_i, cy_i, cz_i): drawn on each body's frame origin, so
+    the links are bars between joints and the default pose no longer folds two of them together."""
+    system = load_system(SPECS / "arms" / "stanford.yaml")
+    builder = SystemBuilder(system)
+    drawing = builder.build()
+    sizes = dict(drawing.sizes)
+    assert all(sizes[f"c{axis}{i}"] == 0.0 for axis in "xyz" for i in range(1, 7))
+    for body in system.bodies:
+        (part,) = body.parts
+        assert np.allclose(builder.pose.point(body.name, builder.num.vec(part.at)), builder.pose.frames[body.name][0])
+    assert not any("every default pose" in r for r in draw_system(system).remarks)
+    # a com that is a real length (p03: the bob at l below the pivot) keeps its size
+    p03 = SystemBuilder(load_system(SPECS / "tutorial-1" / "p03-cart-pendulum.yaml"))
+    p03.build()
+    assert dict(p03.sizes)["l"] > 0
