@@ -4,6 +4,7 @@ against hand-drawn diagrams of the tutorial's problems, and their drawing."""
 from __future__ import annotations
 
 import math
+import xml.etree.ElementTree as ET
 from functools import cache
 from pathlib import Path
 
@@ -192,8 +193,8 @@ def test_cli_figure_body_writes_the_free_body_diagram(tmp_path: Path) -> None:
     out = tmp_path / "cart.svg"
     result = runner.invoke(app, ["figure", str(P03), "--body", "cart", "-o", str(out)])
     assert result.exit_code == 0, result.output
-    text = out.read_text()
-    assert "<svg" in text and "R" in text
+    root = ET.fromstring(out.read_bytes())  # well-formed
+    assert root.tag.endswith("svg") and "R" in out.read_text()
     bad = runner.invoke(app, ["figure", str(P03), "--body", "nope", "-o", str(tmp_path / "x.svg")])
     assert bad.exit_code == 2 and "no body 'nope'" in bad.output and not (tmp_path / "x.svg").exists()
 
