@@ -78,9 +78,10 @@ def _render(derivation: object, fmt: str, template_dir: Path | None) -> str | by
         tex = render_latex(derivation, template_dir)
         if fmt == "tex":
             return tex
+        from tutgen.figure.picture import picture_files
         from tutgen.render.pdf import compile_pdf
 
-        return compile_pdf(tex)
+        return compile_pdf(tex, files=picture_files([derivation.system]))  # the spec's own picture
     from tutgen.render.markdown import render_markdown
 
     return render_markdown(derivation, template_dir)
@@ -272,6 +273,7 @@ def figure_files(specs: list[Path], targets: list[Path], *, force: bool) -> tupl
     """The files a Markdown solution refers to, to be written beside it: the generated figure's SVG
     (``<spec>.figure.svg``) and a copy of the spec's own picture (``figure.file``, same relative path).
     Refuses to overwrite an existing file without ``force``, as the solutions themselves."""
+    from tutgen.figure.picture import read_picture
     from tutgen.figure.view import svg_file
     from tutgen.spec.validate import load_system
 
@@ -288,7 +290,7 @@ def figure_files(specs: list[Path], targets: list[Path], *, force: bool) -> tupl
             copy = target.parent / picture.path
             if copy.resolve() != picture.resolved:
                 paths.append(copy)
-                contents.append(picture.resolved.read_bytes())
+                contents.append(read_picture(system))  # checked again as it is opened
     for path in paths:
         if _is_spec(path, specs):
             raise UsageError(f"refusing to overwrite the spec {path} with a figure; choose another -o")

@@ -17,8 +17,15 @@ def figure(
         Path, typer.Option("--output", "-o", metavar="FILE", help="fig.svg, fig.tex or fig.pdf.", show_default=False)
     ],
     force: Annotated[bool, typer.Option("--force", help="Overwrite an existing file.")] = False,
+    body: Annotated[
+        str | None,
+        typer.Option(
+            "--body", metavar="NAME", help="Draw the free-body diagram of this body instead.", show_default=False
+        ),
+    ] = None,
 ) -> None:
-    """Draw the schematic of SPEC and write it as SVG, a LaTeX (TikZ) document or PDF, by -o's suffix."""
+    """Draw the schematic of SPEC (or, with --body, one body's free-body diagram) and write it as SVG, a
+    LaTeX (TikZ) document or PDF, by -o's suffix."""
     from tutgen.api import plan_outputs, write_outputs
     from tutgen.errors import UsageError
     from tutgen.figure.view import FIGURE_FORMATS, render_figure
@@ -27,4 +34,4 @@ def figure(
     if fmt is None:
         raise UsageError(f"-o {output}: expected a file ending in .svg, .tex or .pdf")
     targets = plan_outputs([spec], output, "pdf" if fmt == "pdf" else "tex", force=force)
-    write_outputs(targets, [render_figure(spec, fmt)])
+    write_outputs(targets, [render_figure(spec, fmt, body)])

@@ -9,6 +9,7 @@ import sympy as sp
 from tutgen.figure.canvas import TARGET_SIZE
 from tutgen.figure.elements import ElementDrawing
 from tutgen.figure.geometry import points_box
+from tutgen.figure.pose import Vec
 from tutgen.figure.scene import Box, Fill, Polyline, Stroke
 from tutgen.figure.texlabel import word_tex
 from tutgen.model.system import JointKind
@@ -18,13 +19,21 @@ class AxesDrawing(ElementDrawing):
     """Draws the frames, gravity and world axes of a system."""
 
     def draw_frames(self) -> None:
-        """Oblique view: each joint's axis (dash-dot) and each moving body's frame (x and z arrows)."""
+        """Oblique view: each joint's axis (dash-dot) and each moving body's frame (x and z arrows).
+
+        An arm of more than three joints stays legible so: where a body's z axis lies on its joint's
+        axis (a Denavit–Hartenberg frame), that axis line is the z axis — it gets the arrow head and
+        the label at its end, and no second arrow is drawn along it; the x axes are short and
+        unlabelled."""
+        long_arm = len(self.s.joints) > 3
+        axis_end: dict[str, tuple[Vec, Vec]] = {}
         for j in self.s.joints:
             if j.kind is JointKind.FIXED:
                 continue
             at = self.pose.joint_at[j.name]
             axis = self.pose.axis_of[j.name]
             self.line([self.P(at - axis * 0.8 / self.scale), self.P(at + axis * 1.1 / self.scale)], Stroke.AXIS)
+            axis_end[j.child] = (at, axis)
         k = 0
         for b in self.s.bodies:
             j = self.pose.by_child.get(b.name)
@@ -32,16 +41,23 @@ class AxesDrawing(ElementDrawing):
                 continue
             k += 1
             o, r = self.pose.frames[b.name]
-            # the DH frames: x and z of each; a long arm names only the z axes, to stay legible
             for col, letter in ((0, "x"), (2, "z")):
                 d = self.page_dir(o, r[:, col])
                 if d is None:
                     continue
+                names, tex = f"frame:{b.name}:{letter}", f"{letter}_{{{k}}}"
+                if long_arm and letter == "z" and b.name in axis_end and _on_axis(o, r[:, col], *axis_end[b.name]):
+                    at, axis = axis_end[b.name]
+                    tip = at + axis * 1.1 / self.scale
+                    self.head(self.P(at + axis * 0.9 / self.scale), self.P(tip))
+                    self.label(names, tex, self.P(tip), self.page_dir(tip, axis) or d)
+                    continue
                 start = self.P(o)
-                end = (start[0] + d[0] * 0.7, start[1] + d[1] * 0.7)
+                length = 0.45 if long_arm else 0.7
+                end = (start[0] + d[0] * length, start[1] + d[1] * length)
                 self.arrow(start, end, Stroke.THIN)
-                if letter == "z" or len(self.s.joints) <= 3:
-                    self.label(f"frame:{b.name}:{letter}", f"{letter}_{{{k}}}", end, d)
+                if letter == "z" or not long_arm:
+                    self.label(names, tex, end, d)
 
     # -- gravity, world axes, energy-only specs --------------------------------------------------
     def draw_gravity_and_axes(self) -> None:
@@ -63,7 +79,7 @@ class AxesDrawing(ElementDrawing):
                 self.label("gravity", tex, ((tail[0] + tip[0]) / 2, (tail[1] + tip[1]) / 2), (1.0, 0.0))
         if not self.s.bodies:
             return  # T and U given: there is no geometry to put axes on
-        origin = (box.x0 - 0.9, box.y0 - 0.3)
+        origin = (box.x0 - 1.25, box.y0 - 0.5)  # clear of the first joint's labels (a torque's τ₁)
         axes = [(0, "x"), (1, "y"), (2, "z")]
         if self.view == "planar":
             axes = [(k, n) for k, n in axes if k in self.screen]
@@ -89,3 +105,11 @@ class AxesDrawing(ElementDrawing):
 
 def _is_negative(expr: sp.Expr) -> bool:
     return bool(sp.sympify(expr).could_extract_minus_sign())
+
+
+def _on_axis(origin: Vec, direction: Vec, at: Vec, axis: Vec) -> bool:
+    """Whether the line through ``origin`` along ``direction`` is the joint axis through ``at``."""
+    if np.linalg.norm(np.cross(direction, axis)) > 1e-6 * (np.linalg.norm(direction) or 1.0):
+        return False
+    off = origin - at
+    return bool(np.linalg.norm(np.cross(off, axis)) < 1e-6 * max(1.0, float(np.linalg.norm(off))))

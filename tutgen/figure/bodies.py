@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from tutgen.figure.canvas import MASS, PIN, SLIDER, Canvas
+from tutgen.figure.canvas import MASS, PIN, Canvas
 from tutgen.figure.geometry import convex_hull, points_box
 from tutgen.figure.pose import Vec
 from tutgen.figure.scene import Box, Fill, Point, Stroke
@@ -41,7 +41,8 @@ class BodyDrawing(Canvas):
         self.hatch((x - 0.36, y - 0.34 * k), (x + 0.36, y - 0.34 * k), (0.0, -k))
         self.obstacles.append(Box(x - 0.36, min(y, y - 0.5 * k), x + 0.36, max(y, y - 0.5 * k)))
 
-    def draw_prismatic(self, j: Joint) -> None:
+    def draw_prismatic(self, j: Joint, rail: bool = True) -> None:
+        """A slider block on its rail (``rail`` False: the block alone, as a free body is drawn)."""
         pose = self.pose
         child_pos = pose.frames[j.child][0]
         base = pose.joint_at[j.name]
@@ -58,8 +59,10 @@ class BodyDrawing(Canvas):
         nrm = np.array([-u[1], u[0]])
         if nrm[1] > 0 or (abs(nrm[1]) < 1e-9 and nrm[0] > 0):
             nrm = -nrm  # the rail below (or beside) the slider
-        w, h = SLIDER
-        if j.parent == GROUND:
+        w, h = self.slider
+        if not rail:
+            pass
+        elif j.parent == GROUND:
             off = nrm * (h / 2 + 0.02)
             self.hatch(tuple(lo + off), tuple(hi + off), tuple(nrm))
         else:
@@ -77,11 +80,8 @@ class BodyDrawing(Canvas):
 
     def draw_links(self) -> None:
         pose = self.pose
-        for j in self.s.joints:
-            if j.kind is not JointKind.PRISMATIC and j.parent != GROUND:
-                pass
         for b in self.s.bodies:
-            if b.name not in pose.by_child:
+            if b.name not in pose.by_child or (self.only is not None and b.name != self.only):
                 continue
             o = pose.frames[b.name][0]
             j = pose.by_child[b.name]
@@ -104,12 +104,14 @@ class BodyDrawing(Canvas):
                 if np.linalg.norm(centre - o) * self.scale > 1e-3:
                     self.line([self.P(o), self.P(centre)], Stroke.OUTLINE)
         for j in self.s.joints:
-            if j.kind is JointKind.REVOLUTE:
+            if j.kind is JointKind.REVOLUTE and (self.only is None or self.only in (j.parent, j.child)):
                 self.circle(self.P(self.pose.joint_at[j.name]), PIN)
 
     def draw_bodies(self) -> None:
         pose = self.pose
         for b in self.s.bodies:
+            if self.only is not None and b.name != self.only:
+                continue
             composite = len(b.parts) > 1
             for part in b.parts:
                 at3 = pose.point(b.name, self.num.vec(part.at))
@@ -149,19 +151,63 @@ class BodyDrawing(Canvas):
                 hull = convex_hull(pts)
                 self.line(hull, Stroke.OUTLINE, Fill.WHITE, closed=True)
                 if self.view == "oblique" and shape is Shape.BOX:
-                    self.box_edges(pts)
+                    self.box_edges(pts, pose.frames[b.name][1] @ self.num.mat(part.rotation))
                 elif self.view == "oblique":
-                    self.line(pts[37:], Stroke.OUTLINE)  # the far end's rim
-                    self.line(pts[:37], Stroke.THIN)
+                    self.cylinder_rims(b, part, pts)
                 cx = sum(p[0] for p in hull) / len(hull)
                 cy = sum(p[1] for p in hull) / len(hull)
+                # the name inside the outline, where a textbook writes it; it is placed before the labels
+                # drawn later (loads, coordinates), which then keep off it
                 self.label(name, tex, (cx, cy), (0.0, 0.0))
-                self.obstacles.append(points_box([(cx - 0.05, cy - 0.05), (cx + 0.05, cy + 0.05)]))
 
-    def box_edges(self, pts: list[Point]) -> None:
-        # corners are ordered by (a, b, c) in {-1, 1}^3; an edge joins corners differing in one sign
+    def toward_viewer(self) -> Vec:
+        """The world direction the oblique view looks along, toward the viewer: the projection sends
+        every point of a line along it to one page point (the null space of the projection), and it
+        is taken on the side that keeps the page's right, up and this a right-handed set."""
+        w = np.cross(self.matrix[0], self.matrix[1])
+        return w / (np.linalg.norm(w) or 1.0)
+
+    def box_edges(self, pts: list[Point], rot: Vec) -> None:
+        """A box's twelve edges: solid where a face next to the edge faces the viewer, dashed (hidden)
+        where both faces next to it face away."""
+        # corners are ordered by (a, b, c) in {-1, 1}^3, bits 4, 2, 1; an edge joins corners differing in one bit
+        w = self.toward_viewer()
+        bits = (4, 2, 1)
         for i in range(8):
-            for bit in (1, 2, 4):
-                k = i ^ bit
-                if k > i:
-                    self.line([pts[i], pts[k]], Stroke.THIN)
+            for k, bit in enumerate(bits):
+                j = i ^ bit
+                if j < i:
+                    continue
+                faces = [((1 if i & bits[m] else -1) * rot[:, m]) for m in range(3) if m != k]
+                visible = any(float(n @ w) > 1e-9 for n in faces)
+                self.line([pts[i], pts[j]], Stroke.THIN if visible else Stroke.DASHED)
+
+    def cylinder_rims(self, body: object, part: object, pts: list[Point]) -> None:
+        """A cylinder's two rims (37 points each, the first end's then the second's): the rim of the end
+        facing the viewer solid, the other's far half dashed (hidden behind the cylinder)."""
+        rot = self.pose.frames[body.name][1]  # type: ignore[attr-defined]
+        axis = rot @ self.num.vec(part.axis) if part.axis is not None else rot @ np.array([0.0, 0.0, 1.0])  # type: ignore[attr-defined]
+        w = self.toward_viewer()
+        facing = float(axis @ w)  # > 0: the second end faces the viewer
+        rims = (pts[:37], pts[37:])
+        front, back = (rims[1], rims[0]) if facing >= 0 else (rims[0], rims[1])
+        self.line(front, Stroke.OUTLINE)
+        if abs(facing) < 1e-9:  # seen side on: both rims are edges
+            self.line(back, Stroke.OUTLINE)
+            return
+        # the back rim's points nearer the viewer than its centre are seen; the others are hidden
+        cx = sum(p[0] for p in back) / len(back)
+        cy = sum(p[1] for p in back) / len(back)
+        fx = sum(p[0] for p in front) / len(front) - cx
+        fy = sum(p[1] for p in front) / len(front) - cy
+        run: list[Point] = []
+        hidden_run: bool | None = None
+        for p in back:
+            hidden = (p[0] - cx) * fx + (p[1] - cy) * fy > 0  # on the side toward the front rim: behind
+            if hidden_run is not None and hidden != hidden_run:
+                self.line([*run, p], Stroke.DASHED if hidden_run else Stroke.THIN)
+                run = []
+            run.append(p)
+            hidden_run = hidden
+        if run:
+            self.line(run, Stroke.DASHED if hidden_run else Stroke.THIN)

@@ -1,6 +1,6 @@
 """The drawing of a system: its model, placed at one pose, projected, and laid out as primitives.
 
-Steps (each a method of :class:`_Builder` and the classes it builds on, in drawing order):
+Steps (each a method of :class:`SystemBuilder` and the classes it builds on, in drawing order):
 
 1. numbers: every parameter gets a number (its value, or a drawing size for a symbolic length,
    ``figure.sizes`` first), every coordinate a drawing value (``figure.at`` first; otherwise angles of
@@ -30,13 +30,20 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import numpy as np
+
 from tutgen.figure.axes import AxesDrawing
 from tutgen.figure.canvas import POSE_SIGNS
 from tutgen.figure.geometry import prim_box, segments_cross
 from tutgen.figure.labels import place_labels
 from tutgen.figure.pose import Pose
-from tutgen.figure.scene import Box, Drawing, Point, Polyline, Stroke
+from tutgen.figure.scene import Box, Drawing, Point, Polyline, Primitive, Stroke
 from tutgen.model.system import System
+
+#: A link seen shorter than this fraction of its length (an oblique view looking along it) asks for
+#: another default pose, when one shows every link at least :data:`BETTER` of it more.
+END_ON = 0.5
+BETTER = 0.2
 
 
 def draw_system(system: System) -> Drawing:
@@ -44,18 +51,66 @@ def draw_system(system: System) -> Drawing:
 
     When the default pose makes two links overlap (a chain folding back on itself), the next sign
     pattern of the default angles is tried, and the change is remarked on; a pose the spec gives
-    (``figure.at``) is kept as it is, with a remark."""
-    drawing = _Builder(system).build()
-    if not _links_overlap(drawing):
-        return drawing
+    (``figure.at``) is kept as it is, with a remark. In the oblique view, a default pose that shows a
+    link nearly end-on (a SCARA's arm at +40 degrees points at the viewer) is replaced by the sign
+    pattern that shows the links longest, when that one makes no links overlap (for up to four joints).
+    """
+    builder = SystemBuilder(system)
+    drawing = builder.build()
     given = {name for name, _v in (system.figure.at if system.figure else ())}
+    if not _links_overlap(drawing):
+        # (a six-joint arm's other poses fold it onto itself, and trying them costs more than the figure)
+        if given or drawing.view != "oblique" or len(system.joints) > 4 or foreshortening(builder) >= END_ON:
+            return drawing
+        return _seen_broadside(builder, drawing, foreshortening(builder))
     if given:
         return _remarked(drawing, "two links overlap at the pose given by figure.at")
     for signs in POSE_SIGNS[1:]:
-        other = _Builder(system, signs).build()
+        other = SystemBuilder(system, signs).build()
         if not _links_overlap(other):
             return _remarked(other, "the default pose made two links overlap; some angles are drawn negative")
     return _remarked(drawing, "two links overlap at every default pose tried")
+
+
+def _seen_broadside(builder: SystemBuilder, drawing: Drawing, worst: float) -> Drawing:
+    """The default pose whose links are seen longest, if it is clearly better and overlaps no links.
+    The poses are compared on their numbers alone, in the default pose's projection (the view does
+    not depend on the signs of the angles, and the ratio not on the scale); only the best is drawn."""
+    system = builder.s
+    best, best_signs = worst, None
+    for signs in POSE_SIGNS[1:]:
+        trial = SystemBuilder(system, signs)
+        trial.numbers()
+        trial.pose = Pose(system, trial.num)
+        trial.matrix, trial.scale = builder.matrix, builder.scale
+        ratio = foreshortening(trial)
+        if ratio > best + 1e-9:
+            best, best_signs = ratio, signs
+    if best_signs is None or best < worst + BETTER:
+        return drawing
+    other = SystemBuilder(system, best_signs).build()
+    if _links_overlap(other):
+        return drawing
+    return _remarked(other, "the default pose showed a link end-on; some angles are drawn negative")
+
+
+def foreshortening(builder: SystemBuilder) -> float:
+    """How short the most foreshortened link looks: its length on the page over its length at the
+    drawing's scale (1 when seen broadside); links shorter than 0.3 cm on the page are not counted."""
+    pose = builder.pose
+    worst = 1.0
+    for body in builder.s.bodies:
+        joint = pose.by_child.get(body.name)
+        if joint is None:
+            continue
+        start = pose.joint_at[joint.name]
+        for far in [pose.frames[body.name][0], *builder.far_points(body, pose)]:
+            true = float(np.linalg.norm(far - start)) * builder.scale
+            if true < 0.3:
+                continue
+            seen = math.dist(builder.P(far), builder.P(start))
+            worst = min(worst, seen / true)
+    return worst
 
 
 def _remarked(drawing: Drawing, remark: str) -> Drawing:
@@ -85,7 +140,7 @@ def _links_overlap(drawing: Drawing) -> bool:
     return False
 
 
-class _Builder(AxesDrawing):
+class SystemBuilder(AxesDrawing):
     """One drawing of a system, built step by step by :meth:`build`."""
 
     # -- 5. primitives -------------------------------------------------------------------------
@@ -110,7 +165,9 @@ class _Builder(AxesDrawing):
             if self.view == "oblique":
                 self.draw_frames()
         self.draw_gravity_and_axes()
-        labels = place_labels(self.requests, self.obstacles, self.prims, self.remarks)
+        leaders: list[Primitive] = []
+        labels = place_labels(self.requests, self.obstacles, self.prims, self.remarks, leaders)
+        self.prims += leaders
         box = None
         for prim in self.prims:
             b = prim_box(prim)

@@ -59,6 +59,8 @@ class Canvas:
         self.requests: list[tuple[str, str, Point, Point]] = []  # names, tex, anchor, preferred direction
         self.obstacles: list[Box] = []
         self.remarks: list[str] = []
+        self.slider = SLIDER  # the block's size; a free-body diagram draws it larger
+        self.only: str | None = None  # a free-body diagram draws this one body (tutgen/figure/freebody.py)
         self.latex_of = {p.symbol: name_tex(p.name, p.latex) for p in system.parameters}
         self.latex_of.update({c.q: name_tex(c.name, c.latex) for c in system.coordinates})
 
@@ -74,6 +76,12 @@ class Canvas:
                 self.sizes.append((p.name, given_sizes[p.name]))
             elif p.value is not None and p.value.is_number:
                 table[p.symbol] = float(p.value)
+            elif p.symbol in self._com_only():
+                # a centre of mass given only by its own symbols (an arm's cx2, cy2, cz2) is not known
+                # to be anywhere in particular: it is drawn on its body's frame origin, not at a made-up
+                # offset that would send a spoke off every link
+                table[p.symbol] = 0.0
+                self.sizes.append((p.name, 0.0))
             else:
                 table[p.symbol] = default_size(p.name)
                 if self._is_geometric(p.symbol):
@@ -104,6 +112,46 @@ class Canvas:
             at.append((c.name, value))
         self.at = at
         self.num = Numbers(table, frozenset(c.q for c in s.coordinates))
+
+    def _com_only(self) -> frozenset[sp.Basic]:
+        """The symbols that place only centres of mass given as unknown points: bodies given by mass
+        and com whose every com component has a term of its own symbol (``cx2``, ``-cz2`` as a
+        standard DH row turns it, ``a2 + cx2`` past a link's length) found in no joint, shape,
+        element end, load or explicit position, nor in another component."""
+        if not hasattr(self, "_com_symbols"):
+            other: set[sp.Basic] = set()
+            for j in self.s.joints:
+                other |= j.origin_offset.free_symbols | j.offset.free_symbols
+            for b in self.s.bodies:
+                for part in b.parts:
+                    for _name, dim in part.dimensions:
+                        for d in dim if isinstance(dim, tuple) else (dim,):
+                            other |= sp.sympify(d).free_symbols
+                    if not b.is_simple:
+                        other |= part.at.free_symbols
+                if b.position is not None:
+                    other |= b.position.free_symbols
+            for el in (*self.s.springs, *self.s.dampers):
+                for end in el.between or ():
+                    other |= end.at.free_symbols
+            for load in self.s.loads:
+                other |= load.at.free_symbols
+            com: set[sp.Basic] = set()
+            for b in self.s.bodies:
+                if not b.is_simple:
+                    continue
+                for part in b.parts:
+                    own = []
+                    for v in part.at:
+                        terms = [t if isinstance(t, sp.Symbol) else -t for t in sp.Add.make_args(sp.sympify(v))]
+                        own.append([t for t in terms if isinstance(t, sp.Symbol) and t not in other])
+                    flat = [t for ts in own for t in ts]
+                    if all(len(ts) == 1 for ts in own) and len(set(flat)) == len(flat):
+                        com |= set(flat)
+                    else:
+                        other |= part.at.free_symbols
+            self._com_symbols = frozenset(com - other)
+        return self._com_symbols
 
     def _is_geometric(self, symbol: sp.Symbol) -> bool:
         if not hasattr(self, "_geometric"):
@@ -398,7 +446,7 @@ class Canvas:
         if n < 1e-9:
             return p
         u = d / n
-        return (float(p[0] + u[0] * SLIDER[0] / 2), float(p[1] + u[1] * SLIDER[0] / 2))
+        return (float(p[0] + u[0] * self.slider[0] / 2), float(p[1] + u[1] * self.slider[0] / 2))
 
     def page_dir(self, at: Vec, world_dir: Vec) -> Point | None:
         a = np.array(self.P(at))

@@ -155,7 +155,11 @@ class CoordinateDrawing(BodyDrawing):
                 if np.linalg.norm(np.cross(now_dir, axis)) < 1e-9:
                     now_dir = self.pose.frames[j.child][1] @ np.array([0, 1.0, 0])
                     zero_dir = zero.frames[j.child][1] @ np.array([0, 1.0, 0])
-            self.angle_mark(c, center, zero_dir, now_dir, axis, tex)
+            # joints at one place (a wrist) get arcs of growing radius, so they do not lie on each other
+            here = self.P(center)
+            shared = sum(1 for p in getattr(self, "_arc_centres", []) if math.dist(p, here) < 0.25)
+            self._arc_centres = [*getattr(self, "_arc_centres", []), here]
+            self.angle_mark(c, center, zero_dir, now_dir, axis, tex, radius=ARC * (1 + 0.45 * shared))
 
     def draw_lengths(self) -> None:
         """Dimension lines for bars whose length is one named parameter (l, a1): the spec's names."""

@@ -10,19 +10,29 @@ from collections.abc import Sequence
 import numpy as np
 
 from tutgen.figure.geometry import inside, overlaps
-from tutgen.figure.scene import Box, Circle, Label, Point, Primitive
+from tutgen.figure.scene import Box, Circle, Label, Point, Polyline, Primitive, Stroke
 from tutgen.figure.texlabel import label_size
 
 #: A label asked for: the names it stands for, its TeX, its anchor, the direction it prefers.
 Request = tuple[str, str, Point, Point]
+#: A label whose box ends farther than this from its anchor (cm) gets a leader line back to it.
+LEADER = 0.45
 
 
 def place_labels(
-    requests: Sequence[Request], obstacles: Sequence[Box], prims: Sequence[Primitive], remarks: list[str]
+    requests: Sequence[Request],
+    obstacles: Sequence[Box],
+    prims: Sequence[Primitive],
+    remarks: list[str],
+    leaders: list[Primitive] | None = None,
 ) -> list[Label]:
     """Each label next to its anchor, on the side it asks for when that place is free; otherwise
     the nearest place (eight directions, four distances) that overlaps no placed label, then the
-    fewest pins and masses, then the fewest lines. A label moved off another label is remarked on."""
+    fewest pins and masses, then the fewest lines. A label moved off another label is remarked on.
+
+    A label that had to go farther than :data:`LEADER` from its anchor is tied back to it, as a
+    textbook does, by a thin leader line into ``leaders`` (left out where it would cross another
+    label)."""
     placed: list[Label] = []
     ink = ink_points(prims)
     boxes = np.zeros((0, 4))  # the placed labels' boxes, widened by a small gap
@@ -64,7 +74,38 @@ def place_labels(
             remarks.append(f"the label of {what} still overlaps another label; no free place was found")
         placed.append(best[1])
         boxes = np.vstack([boxes, [final.x0, final.y0, final.x1, final.y1]])
+    if leaders is not None:
+        for (_names, _tex, anchor, _direction), label in zip(requests, placed, strict=True):
+            leader = _leader(anchor, label, placed)
+            if leader is not None:
+                leaders.append(leader)
     return placed
+
+
+def _leader(anchor: Point, label: Label, placed: Sequence[Label]) -> Polyline | None:
+    """A thin line from the anchor to the near side of a label placed far from it, or None."""
+    box = label.box
+    near = (min(max(anchor[0], box.x0), box.x1), min(max(anchor[1], box.y0), box.y1))
+    gap = math.dist(anchor, near)
+    if gap <= LEADER:
+        return None
+    ux, uy = (near[0] - anchor[0]) / gap, (near[1] - anchor[1]) / gap
+    a = (round(anchor[0] + ux * 0.08, 3), round(anchor[1] + uy * 0.08, 3))
+    b = (round(near[0] - ux * 0.04, 3), round(near[1] - uy * 0.04, 3))
+    for other in placed:
+        if other is not label and _crosses(a, b, other.box):
+            return None
+    return Polyline((a, b), Stroke.THIN)
+
+
+def _crosses(a: Point, b: Point, box: Box) -> bool:
+    """Whether the segment ab passes through the box (sampled: labels are small)."""
+    for i in range(21):
+        t = i / 20
+        x, y = a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t
+        if box.x0 < x < box.x1 and box.y0 < y < box.y1:
+            return True
+    return False
 
 
 def ink_points(prims: Sequence[Primitive]) -> np.ndarray:

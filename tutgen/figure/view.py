@@ -7,13 +7,17 @@ written beside the ``.md`` by :mod:`tutgen.api`); the LaTeX solution holds the T
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from tutgen.figure.build import draw_system
 from tutgen.figure.scene import Drawing
 from tutgen.model.figure import ImageKind
 from tutgen.model.system import System
+
+if TYPE_CHECKING:
+    from tutgen.figure.freebody import BodyForce
 
 _PLAIN = re.compile(r"[A-Za-z0-9._/-]+")
 
@@ -38,9 +42,13 @@ def figure_view(system: System, drawing: Drawing | None = None) -> dict[str, Any
 
     ``tikz``: the picture for LaTeX ("" without a generated drawing); ``svg``: the SVG's relative
     name for Markdown; ``file``/``file_kind``: the instructor's picture, as written in the spec
-    (``file_tex``: whether pdflatex can include it, PNG, JPEG or PDF; ``file_md``: whether a
-    browser shows it, PNG, JPEG or SVG); ``caption``: raw text; ``remarks``: what the drawing adjusted.
+    (``file_tex``: whether pdflatex can include it, PNG, JPEG or PDF; ``file_tex_name``: the safe name
+    it is copied in under when tutgen compiles the PDF, :func:`tutgen.figure.picture.picture_name`;
+    ``file_plain``: whether the path as written may also go into TeX, for a ``.tex`` compiled beside
+    the spec; ``file_md``: whether a browser shows it, PNG, JPEG or SVG); ``caption``: raw text;
+    ``remarks``: what the drawing adjusted.
     """
+    from tutgen.figure.picture import TEX_EXTENSIONS, picture_name
     from tutgen.figure.tikz import to_tikz
 
     drawing = drawing if drawing is not None else drawing_of(system)
@@ -52,12 +60,23 @@ def figure_view(system: System, drawing: Drawing | None = None) -> dict[str, Any
         "svg": svg_name(system) if drawing is not None else "",
         "file": file.path if file is not None else "",
         "file_kind": file.kind.value if file is not None else "",
-        # pdflatex includes PNG, JPEG and PDF; the path goes into TeX as written, so only plain names
-        "file_tex": file is not None and file.kind is not ImageKind.SVG and _PLAIN.fullmatch(file.path) is not None,
+        # pdflatex includes PNG, JPEG and PDF, by a name tutgen makes (copied into the compile folder)
+        "file_tex": file is not None and file.kind in TEX_EXTENSIONS,
+        "file_tex_name": picture_name(file) if file is not None and file.kind in TEX_EXTENSIONS else "",
+        # the path as written goes into TeX only when it is plain and its extension says its kind
+        "file_plain": file is not None and file.kind in TEX_EXTENSIONS and _is_plain(file.path, file.kind),
         "file_md": file is not None and file.kind is not ImageKind.PDF,
         "caption": system.title,
         "remarks": list(drawing.remarks) if drawing is not None else [],
     }
+
+
+def _is_plain(path: str, kind: ImageKind) -> bool:
+    """Whether ``path`` can be written in TeX as it is: plain characters, and an extension pdflatex
+    reads as the file's kind (it picks the graphics driver by the extension)."""
+    suffix = path.rsplit(".", 1)[-1].lower() if "." in path.rsplit("/", 1)[-1] else ""
+    wanted = {ImageKind.PNG: ("png",), ImageKind.JPEG: ("jpg", "jpeg"), ImageKind.PDF: ("pdf",)}
+    return _PLAIN.fullmatch(path) is not None and suffix in wanted.get(kind, ())
 
 
 def figure_json(system: System, drawing: Drawing | None = None) -> dict[str, Any]:
@@ -88,20 +107,61 @@ def svg_file(system: System) -> tuple[str, str] | None:
     return svg_name(system), to_svg(drawing, system.title)
 
 
+def free_body_views(system: System, forces: Mapping[str, Sequence[BodyForce]] | None = None) -> list[dict[str, Any]]:
+    """The free-body diagrams of a planar system's bodies (every body with a mass, in spec order), as
+    a template or the file writer needs them: ``body``; ``tikz`` (LaTeX); ``svg``, the relative name
+    of the SVG beside a Markdown solution (``<spec>.fbd-<body>.svg``), and ``svg_text``; ``labels`` and
+    ``remarks``. ``forces``: per body, the forces to draw instead of the model's own
+    (:func:`tutgen.figure.freebody.body_forces`), as the Newton–Euler step names them. A spatial
+    system gets none (its diagrams would need the oblique view's care)."""
+    from tutgen.figure.freebody import free_body_diagram
+    from tutgen.figure.svg import to_svg
+    from tutgen.figure.tikz import to_tikz
+
+    if not system.bodies or draw_system(system).view != "planar":
+        return []
+    stem = svg_name(system).removesuffix(".figure.svg")
+    out = []
+    for body in system.bodies:
+        if not body.parts:
+            continue
+        drawing = free_body_diagram(system, body.name, (forces or {}).get(body.name))
+        out.append(
+            {
+                "body": body.name,
+                "tikz": to_tikz(drawing),
+                "svg": f"{stem}.fbd-{body.name}.svg",
+                "svg_text": to_svg(drawing, f"{system.title}: {body.name}"),
+                "labels": sorted(drawing.names),
+                "remarks": list(drawing.remarks),
+            }
+        )
+    return out
+
+
 #: The formats of ``tutgen figure``, by the output's suffix.
 FIGURE_FORMATS = {".svg": "svg", ".tex": "tex", ".pdf": "pdf"}
 
 
-def render_figure(spec: Path, fmt: str) -> str | bytes:
+def render_figure(spec: Path, fmt: str, body: str | None = None) -> str | bytes:
     """A spec's figure alone: ``svg`` (text), ``tex`` (a LaTeX document of the picture) or ``pdf``
-    (that document compiled; :class:`tutgen.render.pdf.PdfError` if it cannot be)."""
+    (that document compiled; :class:`tutgen.render.pdf.PdfError` if it cannot be). With ``body``, the
+    free-body diagram of that body instead (:mod:`tutgen.figure.freebody`)."""
     from tutgen.errors import UsageError
     from tutgen.figure.svg import to_svg
     from tutgen.figure.tikz import tikz_document
     from tutgen.spec.validate import load_system
 
     system = load_system(spec)
-    drawing = draw_system(system)  # also with `generated: false`: asked for by name
+    if body is not None:
+        from tutgen.figure.freebody import free_body_diagram
+
+        try:
+            drawing = free_body_diagram(system, body)
+        except ValueError as err:
+            raise UsageError(f"--body: {err}") from None
+    else:
+        drawing = draw_system(system)  # also with `generated: false`: asked for by name
     if fmt == "svg":
         return to_svg(drawing, system.title)
     if fmt not in ("tex", "pdf"):
@@ -111,4 +171,4 @@ def render_figure(spec: Path, fmt: str) -> str | bytes:
         return tex
     from tutgen.render.pdf import compile_pdf
 
-    return compile_pdf(tex)
+    return compile_pdf(tex)  # the figure alone: the generated drawing, never the spec's picture

@@ -16,11 +16,13 @@ pdfTeX writes, and ``\\pdftrailerid{}`` in the preamble drops the random documen
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import signal
 import subprocess
 import tempfile
 import time
+from collections.abc import Mapping
 from pathlib import Path
 
 from tutgen.errors import TutgenError
@@ -33,6 +35,9 @@ DEFAULT_TIMEOUT = 120.0
 MAX_OUTPUT_BYTES = 64 * 1024 * 1024
 #: How often the running compile is looked at (time, output size).
 POLL_SECONDS = 0.05
+#: The names an input file may have in the compile folder (tutgen makes them:
+#: :func:`tutgen.figure.picture.picture_name`): one plain name, no folder, no TeX special character.
+INPUT_NAME = re.compile(r"[a-z0-9][a-z0-9-]{0,63}\.(png|jpg|pdf)")
 
 
 class PdfError(TutgenError):
@@ -52,8 +57,12 @@ def find_latexmk() -> str:
     return exe
 
 
-def compile_pdf(tex: str, timeout: float | None = None) -> bytes:
+def compile_pdf(tex: str, timeout: float | None = None, files: Mapping[str, bytes] | None = None) -> bytes:
     """Compile a complete LaTeX document; return the PDF's bytes.
+
+    ``files``: pictures the document includes, by name (:data:`INPUT_NAME`, e.g. an instructor's
+    ``figure.file`` from :func:`tutgen.figure.picture.picture_files`), written into the sealed
+    compile folder beside the document before LaTeX runs; any other name is a bug, refused here.
 
     ``timeout``: at most this many seconds (default :data:`DEFAULT_TIMEOUT`), and never more than the
     run's deadline leaves (:func:`tutgen.limits.remaining`); past the deadline this raises the run's
@@ -63,6 +72,10 @@ def compile_pdf(tex: str, timeout: float | None = None) -> bytes:
     from tutgen.limits import out_of_time, remaining, shielded, stage
 
     latexmk = find_latexmk()
+    inputs = dict(files or {})
+    for name in inputs:
+        if INPUT_NAME.fullmatch(name) is None or name.startswith("solution."):
+            raise ValueError(f"compile_pdf: {name!r} is not a name an input file may have")
     env = dict(os.environ)
     env.update(
         openin_any="p",
@@ -81,6 +94,8 @@ def compile_pdf(tex: str, timeout: float | None = None) -> bytes:
     proc: subprocess.Popen[bytes] | None = None
     try:
         (work / "solution.tex").write_text(tex, encoding="utf-8")
+        for name, data in sorted(inputs.items()):
+            (work / name).write_bytes(data)
         cmd = [
             latexmk,
             "-norc",
@@ -98,7 +113,7 @@ def compile_pdf(tex: str, timeout: float | None = None) -> bytes:
                     cmd, cwd=work, env=env, stdin=subprocess.DEVNULL, stdout=out, stderr=out, start_new_session=True
                 )
             _limit_file_size(proc.pid)
-        stopped = _watch(proc, work, limit)
+        stopped = _watch(proc, work, limit, sum(len(d) for d in inputs.values()))
         if stopped == "time":
             if budget is not None and budget <= own:
                 raise out_of_time("LaTeX compile", "compiling the PDF")
@@ -119,8 +134,9 @@ def compile_pdf(tex: str, timeout: float | None = None) -> bytes:
             shutil.rmtree(work, ignore_errors=True)
 
 
-def _watch(proc: subprocess.Popen[bytes], work: Path, limit: float) -> str | None:
-    """Wait for latexmk; "time" or "size" when it had to be stopped (it is not yet killed then)."""
+def _watch(proc: subprocess.Popen[bytes], work: Path, limit: float, given: int = 0) -> str | None:
+    """Wait for latexmk; "time" or "size" when it had to be stopped (it is not yet killed then).
+    ``given``: the bytes of the input files tutgen wrote, which are not LaTeX's output."""
     ends = time.monotonic() + limit
     while True:
         try:
@@ -130,7 +146,7 @@ def _watch(proc: subprocess.Popen[bytes], work: Path, limit: float) -> str | Non
             pass
         if time.monotonic() >= ends:
             return "time"
-        if _size(work) > MAX_OUTPUT_BYTES:
+        if _size(work) - given > MAX_OUTPUT_BYTES:
             return "size"
 
 

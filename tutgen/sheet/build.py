@@ -196,9 +196,11 @@ def build_job(shared: Shared, job: Job) -> JobResult:
                 if fmt == "tex":
                     files.append((f"{prefix}{kind}.tex", tex))
                 else:
+                    from tutgen.figure.picture import picture_files
                     from tutgen.render.pdf import compile_pdf
 
-                    files.append((f"{prefix}{kind}.pdf", compile_pdf(tex)))
+                    pdf = compile_pdf(tex, files=picture_files(systems))  # the problems' own pictures
+                    files.append((f"{prefix}{kind}.pdf", pdf))
     files += [(f"{prefix}{name}", svg) for name, svg in figures.values()]
     total = time.perf_counter() - start
     return JobResult(tuple(files), tuple(values_out), tuple(rederived), t_derive, total - t_derive)
