@@ -16,6 +16,7 @@ import csv
 import io
 import json
 import os
+import re
 import shutil
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
@@ -31,6 +32,7 @@ from tutgen.safetext import csv_cell, terminal_text, xml_text
 
 __all__ = [
     "SUMMARY_FIELDS",
+    "json_text",
     "plan_reports",
     "render_json",
     "render_junit",
@@ -119,8 +121,21 @@ def run_to_json(run: CheckRun) -> dict[str, Any]:
     }
 
 
+#: What ``json.dumps`` leaves raw with ``ensure_ascii=False`` though a terminal or a viewer acts on it:
+#: DEL and the C1 controls (U+0080-U+009F, CSI among them), the bidirectional overrides, the line and
+#: paragraph separators. Escaped as ``\\uXXXX``: the data is kept, and the JSON means the same.
+_JSON_UNSAFE = re.compile("[\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]")
+
+
+def json_text(data: Any) -> str:
+    """``data`` as indented JSON (UTF-8 text), with every character of :data:`_JSON_UNSAFE` escaped
+    (``json.dumps`` escapes only those below U+0020)."""
+    text = json.dumps(data, indent=2, ensure_ascii=False)
+    return _JSON_UNSAFE.sub(lambda m: f"\\u{ord(m.group()):04x}", text) + "\n"
+
+
 def render_json(run: CheckRun) -> str:
-    return json.dumps(run_to_json(run), indent=2, ensure_ascii=False) + "\n"
+    return json_text(run_to_json(run))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -238,7 +253,7 @@ def render_summary(run: CheckRun, fmt: str) -> str:
     """The summary as ``csv`` or ``json`` text."""
     rows = summary_rows(run)
     if fmt == "json":
-        return json.dumps({"spec": run.spec, "files": rows}, indent=2, ensure_ascii=False) + "\n"
+        return json_text({"spec": run.spec, "files": rows})
     buffer = io.StringIO()
     writer = csv.DictWriter(buffer, fieldnames=SUMMARY_FIELDS, lineterminator="\n")
     writer.writeheader()
