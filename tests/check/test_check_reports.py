@@ -65,7 +65,9 @@ def test_reports_terminal_text_has_no_control_characters(run: CheckRun) -> None:
     assert "3 files: 0 pass, 1 fail, 1 invalid, 1 time limit" in text
 
 
-@pytest.mark.parametrize("render", [render_json, lambda r: render_summary(r, "json")], ids=["check-json", "summary-json"])
+@pytest.mark.parametrize(
+    "render", [render_json, lambda r: render_summary(r, "json")], ids=["check-json", "summary-json"]
+)
 def test_reports_json_escapes_c1_controls_and_keeps_the_data(run: CheckRun, render: object) -> None:
     """json.dumps escapes only what is below U+0020: a C1 control (CSI, U+009B) or a bidirectional
     override would reach a terminal that shows the JSON. They are escaped; the data is unchanged."""
