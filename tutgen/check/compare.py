@@ -457,7 +457,7 @@ def key_problems(ref: Reference) -> list[SpecError]:
     for key, segments, loc in named:
         found = marker.resolve_segments(segments)
         if isinstance(found, str):
-            out.append(SpecError(loc, f"the marking key's '{key}' names no result of this spec: {found}"))
+            out.append(SpecError(loc, f"the marking's '{key}' names no result of this spec: {found}"))
     return out
 
 

@@ -106,6 +106,7 @@ def run_to_json(run: CheckRun) -> dict[str, Any]:
         "spec": run.spec,
         "title": run.title,
         "summary": {"files": len(run.files), **{s: statuses.count(s) for s in FILE_STATUSES}},
+        "marking": {"source": run.marking, "asked": list(run.asked), "note": run.marking_note},
         "files": [
             {
                 "answers": f.path,
@@ -191,6 +192,7 @@ def render_junit(run: CheckRun) -> str:
         _element(props, "property", {"name": "spec", "value": run.spec})
         if f.student:
             _element(props, "property", {"name": "student", "value": f.student})
+        _element(props, "property", {"name": "marking", "value": run.marking_note or f"stated ({run.marking})"})
         n = fails = errs = 0
         if f.errors:
             case = _element(suite, "testcase", {"classname": stem, "name": "answers file", "file": f.path, "time": "0"})
@@ -316,6 +318,8 @@ def render_table(run: CheckRun, *, color: bool = False, width: int = 120) -> str
         console.print(f"{c['correct']} correct, {c['wrong']} wrong, {c['missing']} missing{extra}")
         if f.limit:
             console.print(Text(f"{f.path}: stopped before the end ({f.limit})"))
+        if run.marking_note:
+            console.print(Text(run.marking_note))
         return buffer.getvalue()
     table = Table(title=Text(f"answers to {run.spec}"), title_justify="left")
     for name in ("file", "student", "result", "correct", "wrong", "missing", "not correct"):
@@ -344,6 +348,8 @@ def render_table(run: CheckRun, *, color: bool = False, width: int = 120) -> str
         f"{len(run.files)} files: {statuses.count('pass')} pass, {statuses.count('fail')} fail, "
         f"{statuses.count('invalid')} invalid{extra}"
     )
+    if run.marking_note:
+        console.print(Text(run.marking_note))
     return buffer.getvalue()
 
 

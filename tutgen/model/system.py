@@ -19,6 +19,7 @@ import sympy as sp
 
 from tutgen.errors import Location
 from tutgen.model.figure import FigureConfig
+from tutgen.model.marking import Marking
 from tutgen.spec.units import Dimension
 
 Vector = sp.ImmutableMatrix
@@ -222,6 +223,7 @@ class System:
     # how many significant figures decimals are printed with (None: the renderer's default, 4)
     significant_figures: int | None = None
     figure: FigureConfig | None = None  # the spec's `figure:` section (drawing configuration, own picture)
+    marking: Marking | None = None  # the spec's `marking:` section: what `tutgen check` marks
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

@@ -647,6 +647,11 @@ class SpecDoc(SpecModel):
     energy: EnergySpec | None = None
     ask: list[AskItem] | None = Field(None, description="What to derive (default: everything that applies).")
     figure: FigureSpec | None = Field(None, description="How the figure is drawn, or the instructor's own picture.")
+    marking: dict[str, Any] | None = Field(
+        None,
+        description="What `tutgen check` marks: {ask: [result keys], tolerance: {rel_tol, abs_tol, rounded}, "
+        "items: {result key: rule}, significant_figures: N} (docs/check.md, the marking key).",
+    )
 
 
 def json_schema() -> dict[str, Any]:

@@ -25,6 +25,7 @@ from tutgen.spec.builders.figure import build_figure
 from tutgen.spec.builders.gravity import build_gravity
 from tutgen.spec.builders.joints import build_joints, check_explicit_placement
 from tutgen.spec.builders.loads import build_generalized_forces, build_loads
+from tutgen.spec.builders.marking import build_marking
 from tutgen.spec.builders.parameters import build_parameters
 from tutgen.spec.builders.texts import build_statement, build_texts, build_title
 from tutgen.spec.loader import KeyPath, SourceMap
@@ -57,6 +58,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
     kinetic, potential = build_energy(ctx, body_names)
     check_explicit_placement(ctx, placed)
     figure = build_figure(ctx)
+    marking = build_marking(ctx)
     texts = build_texts(ctx)  # last: their maths may use every declared name
     if ctx.errors:
         raise SpecErrors(ctx.errors)
@@ -87,5 +89,6 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
         origin=smap.location(()),
         significant_figures=ctx.doc.significant_figures,
         figure=figure,
+        marking=marking,
     )
     return with_texts(system, texts)
