@@ -47,8 +47,8 @@ __all__ = [
     "check",
     "load_reference",
     "mark_file",
-    "marking_for",
     "mark_files",
+    "marking_for",
     "refuse_irregular",
 ]
 
