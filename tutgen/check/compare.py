@@ -274,8 +274,8 @@ class _Marker(ScalarMarking):
                     self.error((*keypath, k), MSG_NO_TOLERANCE.format(key=k), key=True)
             answer, keypath = answer["value"], (*keypath, "value")
         if isinstance(answer, bool) and not isinstance(result, bool):
-            self.error(keypath, "expected an expression or a number, found true/false")
-            return []
+            feedback = "cannot read the answer: expected an expression or a number, found true/false"
+            return [self.wrong(path, keypath, answer, result, feedback)]
         if answer is None or (isinstance(answer, str) and not answer.strip()):
             return [EntryResult(entry_name(path), Status.MISSING, feedback="no answer", location=self.where(keypath))]
         if isinstance(result, dict):

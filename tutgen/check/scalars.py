@@ -31,6 +31,7 @@ from tutgen.check.equivalence import (
 )
 from tutgen.check.feedback import diagnose, number_feedback, round_half_up, significant
 from tutgen.check.names import DIMENSION_OF, TEXT_FIELDS, Path, entry_name, field_of
+from tutgen.check.notation import ascii_answer
 from tutgen.check.numeric import value_of_number
 from tutgen.check.verdicts import EntryResult, Reference, Status
 from tutgen.errors import SpecError
@@ -39,7 +40,7 @@ from tutgen.spec.expr import ExprError, number_to_rational, parse_expression
 from tutgen.spec.loader import KeyPath
 from tutgen.spec.units import Dimension, parse_quantity, parse_unit
 
-__all__ = ["NUMBER_RE", "ScalarMarking", "UnknownName", "answer_text"]
+__all__ = ["NUMBER_RE", "ScalarMarking", "UnknownName", "Unreadable", "answer_text"]
 
 NUMBER_RE = re.compile(r"\s*[-+]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][-+]?[0-9]+)?")
 
@@ -49,6 +50,20 @@ _result_cache: weakref.WeakKeyDictionary[Reference, dict[str, sp.Expr]] = weakre
 
 class UnknownName(Exception):
     """An answer that uses a name the problem does not have: a wrong answer, with this feedback."""
+
+
+class Unreadable(Exception):
+    """An answer that is not an expression or a quantity (an unclosed parenthesis, an unknown unit):
+    that entry is wrong, with the parse error and its place; the rest of the file is still marked."""
+
+    def __init__(self, error: SpecError) -> None:
+        super().__init__(str(error))
+        self.error = error
+
+    @property
+    def feedback(self) -> str:
+        e = self.error
+        return f"cannot read the answer: {e.message}" + (f" ({e.hint})" if e.hint else "") + f" [at {e.location}]"
 
 
 @dataclass
@@ -77,35 +92,39 @@ class ScalarMarking:
         self.errors.append(SpecError(loc, message, hint))
 
     def parseanswer_text(self, text: str, keypath: KeyPath, offset: int = 0) -> sp.Expr | None:
+        rewritten = ascii_answer(text)  # θ̇₁² as theta1_dot**2, 2 m g as 2*m*g
         try:
-            expr = parse_expression(text, self.ref.symbols)
+            expr = parse_expression(rewritten.text, self.ref.symbols)
         except ExprError as exc:
             if exc.message.startswith("unknown name"):
                 raise UnknownName(exc.message + (f" ({exc.hint})" if exc.hint else "")) from None
-            loc = self.sheet.source.expr_location(keypath, offset + exc.offset)
-            self.errors.append(SpecError(loc, exc.message, exc.hint))
-            return None
+            loc = self.sheet.source.expr_location(keypath, offset + rewritten.source_offset(exc.offset))
+            raise Unreadable(SpecError(loc, exc.message, exc.hint)) from None
         return expr.xreplace(self.ref.values) if self.ref.values else expr
 
     def read(self, answer: Any, keypath: KeyPath) -> _Parsed | None:
         """An answer scalar as sympy (None after recording an answers-file error)."""
         if isinstance(answer, bool):
-            self.error(keypath, "expected an expression or a number, found true/false")
-            return None
+            raise Unreadable(
+                SpecError(self.sheet.location(keypath), "expected an expression or a number, found true/false")
+            )
         if isinstance(answer, int | float):
             try:
                 value = number_to_rational(answer)
             except ExprError as exc:
-                self.error(keypath, exc.message)
-                return None
+                raise Unreadable(SpecError(self.sheet.location(keypath), exc.message)) from None
             literal = self.sheet.raw_number(keypath, answer) or repr(answer)
             return _Parsed(value, literal)
         text = str(answer)
         try:
             quantity = parse_quantity(text)
-        except ExprError as exc:
-            self.errors.append(SpecError(self.sheet.source.expr_location(keypath, exc.offset), exc.message, exc.hint))
-            return None
+        except ExprError as exc:  # a number and then no unit: perhaps a product (0.2109 θ̇², 2 m g)
+            try:
+                expr = self.parseanswer_text(text, keypath)
+            except (Unreadable, UnknownName):
+                loc = self.sheet.source.expr_location(keypath, exc.offset)
+                raise Unreadable(SpecError(loc, exc.message, exc.hint)) from None
+            return _Parsed(expr) if expr is not None else None
         if quantity is not None:
             match = NUMBER_RE.match(text)
             assert match is not None
@@ -171,6 +190,8 @@ class ScalarMarking:
             parsed = self.read(answer, keypath)
         except UnknownName as exc:
             return self.wrong(path, keypath, answer, result, str(exc))
+        except Unreadable as exc:
+            return self.wrong(path, keypath, answer, result, exc.feedback)
         if parsed is None:
             return self.wrong(path, keypath, answer, result, "cannot read the answer")
         correct = self.result_expr(result)
@@ -263,6 +284,8 @@ class ScalarMarking:
             given = self.read_equation(answer, keypath)
         except UnknownName as exc:
             return self.wrong(path, keypath, answer, result, str(exc))
+        except Unreadable as exc:
+            return self.wrong(path, keypath, answer, result, exc.feedback)
         if given is None:
             return self.wrong(path, keypath, answer, result, "cannot read the answer")
         correct = self.result_expr(result)
@@ -314,13 +337,8 @@ class ScalarMarking:
         if isinstance(answer, str) and "=" in answer:
             text = answer.replace("==", "=")
             if text.count("=") != 1:
-                self.errors.append(
-                    SpecError(
-                        self.sheet.source.expr_location(keypath, answer.rfind("=")),
-                        "an equation has one '=': write 'lhs = rhs'",
-                    )
-                )
-                return None
+                loc = self.sheet.source.expr_location(keypath, answer.rfind("="))
+                raise Unreadable(SpecError(loc, "an equation has one '=': write 'lhs = rhs'"))
             lhs_text, rhs_text = text.split("=")
             offset = answer.index("=") + (2 if "==" in answer else 1)
             lhs = self.parseanswer_text(lhs_text, keypath)
