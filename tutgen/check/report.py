@@ -145,9 +145,17 @@ def render_json(run: CheckRun) -> str:
 
 
 def _details(item: ItemResult) -> str:
-    lines = [f"{e.name}: {e.status.value}: {e.feedback} ({e.location})" for e in item.problems]
-    lines += [f"remark: {r}" for r in item.remarks]
-    return "\n".join(lines)
+    """A failure's text: the entries that are not correct (remarks on the correct ones are not
+    failures; they go to the test case's system-out)."""
+    return "\n".join(f"{e.name}: {e.status.value}: {e.feedback} ({e.location})" for e in item.problems)
+
+
+def _remarks(item: ItemResult) -> list[str]:
+    """The remarks of an item: its own, and (when it is not correct) those of its correct entries,
+    each named, so that they never read as part of what is wrong."""
+    if item.status is Status.CORRECT:
+        return list(item.remarks)
+    return [f"{e.name}: correct: {e.feedback}" for e in item.entries if e.status is Status.CORRECT and e.feedback]
 
 
 def _line_of(location: str) -> str | None:
@@ -211,8 +219,8 @@ def render_junit(run: CheckRun) -> str:
                 first = item.problems[0]
                 message = f"{first.name}: {first.feedback}"
                 _element(case, "failure", {"type": item.status.value, "message": message}, _details(item))
-            elif item.remarks:
-                _element(case, "system-out", None, "\n".join(item.remarks))
+            if _remarks(item):
+                _element(case, "system-out", None, "\n".join(_remarks(item)))
         for name, value in (("tests", n), ("failures", fails), ("errors", errs), ("skipped", 0)):
             suite.set(name, str(value))
         total, failures, errors = total + n, failures + fails, errors + errs
@@ -270,15 +278,17 @@ def render_summary(run: CheckRun, fmt: str) -> str:
 
 
 def _item_details(item: ItemResult) -> str:
+    """The details cell of an item's row: what is not correct, how numeric equalities were decided,
+    and (for a correct item) its remarks. A wrong item's correct entries get rows of their own."""
     lines = []
     for e in item.entries:
+        name = "" if e.name == item.name else f"{e.name}: "
         if e.status is not Status.CORRECT:
-            name = "" if e.name == item.name else f"{e.name}: "
             lines.append(f"{name}{e.feedback}  [{e.location}]")
-        elif e.how.startswith("numeric"):
-            name = "" if e.name == item.name else f"{e.name}: "
+        elif e.how.startswith("numeric") and item.status is Status.CORRECT:
             lines.append(f"{name}{e.how}")
-    lines += item.remarks
+    if item.status is Status.CORRECT:
+        lines += item.remarks
     return "\n".join(lines)
 
 
@@ -312,6 +322,11 @@ def render_table(run: CheckRun, *, color: bool = False, width: int = 120) -> str
         for item in f.items:
             mark = Text(_MARKS[item.status] + " " + item.status.value, style=_STYLES[item.status])
             table.add_row(mark, Text(item.name), Text(_item_details(item)))
+            if item.status is not Status.CORRECT:  # a correct entry's remark is not part of what is wrong
+                ok = Text(_MARKS[Status.CORRECT] + " " + Status.CORRECT.value, style=_STYLES[Status.CORRECT])
+                for e in item.entries:
+                    if e.status is Status.CORRECT and (e.feedback or e.how.startswith("numeric")):
+                        table.add_row(ok, Text(e.name), Text(e.feedback or e.how))
         console.print(table)
         c = _counts(f)
         extra = "".join(f", {c[s]} {s.replace('_', ' ')}" for s in ("cannot_evaluate", "time_limit") if c[s])

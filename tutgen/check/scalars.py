@@ -42,6 +42,10 @@ from tutgen.spec.units import Dimension, parse_quantity, parse_unit
 
 __all__ = ["NUMBER_RE", "ScalarMarking", "UnknownName", "Unreadable", "answer_text"]
 
+#: Results measured from a datum: an answer off by a constant is right (a potential energy's zero is a
+#: choice; so is, with it, the Lagrangian's).
+_DATUM_FIELDS = frozenset({"potential_energy", "lagrangian"})
+
 NUMBER_RE = re.compile(r"\s*[-+]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][-+]?[0-9]+)?")
 
 #: Parsed result expressions, per reference (for as long as the reference lives).
@@ -208,7 +212,23 @@ class ScalarMarking:
             decision = decide(given, correct, rel_tol=tol.rel, abs_tol=tol.abs)
         else:
             decision = decide(given, correct)
+        if decision.equal is False and field_name in _DATUM_FIELDS:
+            shift = self.datum_shift(given, correct)
+            if shift is not None:
+                how = f"up to an additive constant: yours minus the correct expression is {expr_text(shift)}"
+                remark = f"{entry_name(path)} differs by a constant ({expr_text(shift)}): a different datum"
+                return self.right(path, keypath, answer, result, how, remark)
         return self.verdict(decision, given, correct, answer, keypath, result, path)
+
+    def datum_shift(self, given: sp.Expr, correct: sp.Expr) -> sp.Expr | None:
+        """``given - correct`` when it is a non-zero constant (free of the coordinates and rates): a
+        potential energy measured from another datum. Decided as every equality is (:func:`decide`)."""
+        if too_large(given, correct):
+            return None
+        shift = reduced(given - correct)
+        if shift == 0 or shift.free_symbols & self.ref.state:
+            return None
+        return shift if decide(given, correct + shift).equal else None
 
     def verdict(
         self,
