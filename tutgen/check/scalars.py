@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import re
 import weakref
+from collections.abc import Mapping
 from dataclasses import dataclass
 from decimal import Decimal
 from typing import Any
@@ -18,6 +19,7 @@ import mpmath
 import sympy as sp
 
 from tutgen.check.answers import AnswerSheet, Tolerance
+from tutgen.check.decimals import half_unit, within_rounding
 from tutgen.check.equivalence import (
     MAX_SCALE,
     MIN_SCALE,
@@ -212,6 +214,10 @@ class ScalarMarking:
             decision = decide(given, correct, rel_tol=tol.rel, abs_tol=tol.abs)
         else:
             decision = decide(given, correct)
+        if decision.equal is False and isinstance(answer, str):
+            k = within_rounding(ascii_answer(answer).text, self.parse_with, correct, self.figures)
+            if k is not None:
+                return self.right(path, keypath, answer, result, self.as_printed)
         if decision.equal is False and field_name in _DATUM_FIELDS:
             shift = self.datum_shift(given, correct)
             if shift is not None:
@@ -219,6 +225,29 @@ class ScalarMarking:
                 remark = f"{entry_name(path)} differs by a constant ({expr_text(shift)}): a different datum"
                 return self.right(path, keypath, answer, result, how, remark)
         return self.verdict(decision, given, correct, answer, keypath, result, path)
+
+    @property
+    def figures(self) -> int:
+        """The significant figures a decimal may be rounded to (0: decimals are exact): the marking's,
+        else those the spec's solution prints decimals with."""
+        stated = self.ref.key.significant_figures
+        return self.ref.figures if stated is None else stated
+
+    @property
+    def as_printed(self) -> str:
+        return f"as printed: each decimal is the result rounded to {self.figures} significant figures"
+
+    def parse_with(self, text: str, extra: Mapping[str, sp.Symbol]) -> sp.Expr:
+        """Answer text in the ASCII grammar, with ``extra`` names (the decimals of :mod:`decimals`)."""
+        expr = parse_expression(text, {**self.ref.symbols, **extra})
+        return expr.xreplace(self.ref.values) if self.ref.values else expr
+
+    def parse_equation_with(self, text: str, extra: Mapping[str, sp.Symbol]) -> sp.Expr:
+        text = text.replace("==", "=")
+        if "=" not in text:
+            return self.parse_with(text, extra)
+        lhs, rhs = text.split("=", 1)
+        return self.parse_with(lhs, extra) - self.parse_with(rhs, extra)
 
     def datum_shift(self, given: sp.Expr, correct: sp.Expr) -> sp.Expr | None:
         """``given - correct`` when it is a non-zero constant (free of the coordinates and rates): a
@@ -293,6 +322,17 @@ class ScalarMarking:
         if close:
             limit = f"rel_tol {tol.rel:g}" if tol.rel * abs(correct) >= tol.abs else f"abs_tol {tol.abs:g}"
             return self.right(path, keypath, answer, result, f"within {limit}")
+        literal = parsed.literal or ""
+        half = half_unit(literal, self.figures) if self.figures and re.search(r"[.eE]", literal) else None
+        if half is not None:
+            in_unit = sp.N(self.result_expr(result) / parsed.unit_factor, 30)
+            if abs(number_to_rational(literal.lstrip("+")) - sp.Rational(str(in_unit))) <= sp.Rational(str(half)):
+                return self.right(path, keypath, answer, result, self.as_printed)
+            close_to = in_unit != 0 and abs(given - correct) <= 0.01 * abs(correct)  # a rounding, not a slip
+            shown = round_half_up(Decimal(str(in_unit)), self.figures) if close_to else None
+            if shown is not None:
+                said = number_feedback(given, correct, tol) + f"; to {self.figures} significant figures it is {shown}"
+                return self.wrong(path, keypath, answer, result, said)
         return self.wrong(path, keypath, answer, result, number_feedback(given, correct, tol))
 
     # -- equations of motion ------------------------------------------------------------------------
@@ -332,6 +372,11 @@ class ScalarMarking:
             remark = f"{name}: scaled by the constant factor {expr_text(k)}"
             how = f"scaled by {expr_text(k)}: equal up to this constant factor"
             return self.right(path, keypath, answer, result, how, remark)
+        if isinstance(answer, str):
+            text = ascii_answer(answer).text
+            k = within_rounding(text, self.parse_equation_with, correct, self.figures, factors=(1, -1))
+            if k is not None:
+                return self.right(path, keypath, answer, result, self.as_printed)
         return self.wrong(path, keypath, answer, result, diagnose(self.scaled(given, correct), correct, self.ref.state))
 
     def scaled(self, given: sp.Expr, correct: sp.Expr) -> sp.Expr:
