@@ -405,8 +405,11 @@ class _Marker(ScalarMarking):
             return None
         try:
             with answer_deadline(self.ref.answer_timeout):
-                given = [[self.read(v, ()).expr for v in row] for row in answer]  # type: ignore[union-attr]
                 correct = [[self.result_expr(v) for v in row] for row in result]
+                given = [
+                    [self.read(v, (), symbolic=bool(c.free_symbols)).expr for v, c in zip(row, crow, strict=True)]  # type: ignore[union-attr]
+                    for row, crow in zip(answer, correct, strict=True)
+                ]
                 return matrix_finding(given, correct, self.ref.state, self.ref.forces)
         except (AnswerTimeLimit, MemoryError, RecursionError, UnknownName, Unreadable, AttributeError, TypeError):
             return None  # an entry that does not read, or no time: the entries speak for themselves

@@ -2,42 +2,32 @@
 
 A variant's solution prints ``0.2109 θ̇²`` for ``27/128 θ̇²`` (decimals to the spec's
 ``significant_figures``, 4 by default; tutgen.render.printer). Compared exactly, the copied answer is
-wrong. So an answer whose decimals differ from the result is compared once more, allowing each
-decimal literal ``d`` to stand for any number it is the rounding of: to ``F`` significant figures,
-the figures the solution prints (or to the figures written, when the student wrote more), so that
-``d`` stands for ``d ± δ`` with ``δ`` half a unit of its last figure. With ``g(d₁, …, dₙ)`` the answer
-as a function of its decimals, it is accepted when at every usable random state
-
-    |g − r| ≤ 1.01 · Σᵢ |∂g/∂dᵢ| · δᵢ
-
-(the first-order effect of rounding each decimal, with 1 % for the second order), evaluated in high
-precision as every comparison is (:func:`tutgen.check.numeric.evaluate`), states that cannot be
-trusted discarded. A decimal then cannot hide anything: its allowance is proportional to its own
-size and to half a unit of its printed last figure. Integers (``2``, ``1235``) are exact, and so is a
-decimal that is 0. Off with the marking's ``significant_figures: 0``.
+wrong. So an answer that holds a decimal literal and differs from the result is compared once more,
+coefficient by coefficient: both sides in trigonometric normal form, grouped by their monomials (in the
+coordinates, rates and parameters) with numeric coefficients (:func:`tutgen.check.equivalence.groups`).
+The answer is accepted when the monomials are the same and each coefficient ``a`` of the answer is
+the result's ``r`` rounded: ``|a − r| ≤ δ``, with ``δ`` half a unit of ``a``'s ``F``-th significant
+figure (``F`` the figures the solution prints, or more when ``a`` has more: ``9.5996e-3`` must be
+right to 5). A decimal therefore hides nothing: a term the result does not have is a wrong answer,
+however small, and no coefficient is allowed more than its printed rounding. A plain number is one
+coefficient (:func:`half_unit`). Off with the marking's ``significant_figures: 0``.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Mapping
 from decimal import Decimal, InvalidOperation
 
-import mpmath
 import sympy as sp
 
-from tutgen.check.numeric import CHECK_DPS, NEEDED_DIGITS, TRIALS, evaluate, random_states
-from tutgen.spec.expr import number_to_rational
+from tutgen.check.equivalence import groups, reduced
 
-__all__ = ["MAX_DECIMALS", "decimal_literals", "half_unit", "within_rounding"]
+__all__ = ["decimal_literals", "half_unit", "within_rounding"]
 
-#: Answers with more decimal literals than this are compared exactly only.
-MAX_DECIMALS = 24
 #: A literal with a decimal point or an exponent, not part of a name (``theta1e``) or another number.
 _DECIMAL = re.compile(
     r"(?<![A-Za-z0-9_.])(?:(?:[0-9]+\.[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?|[0-9]+[eE][-+]?[0-9]+)(?![A-Za-z0-9_.])"
 )
-_SECOND_ORDER = mpmath.mpf("1.01")
 
 
 def decimal_literals(text: str) -> list[re.Match[str]]:
@@ -59,66 +49,46 @@ def half_unit(literal: str, figures: int) -> Decimal | None:
     return Decimal(5).scaleb(value.adjusted() - max(written, figures))
 
 
+def _figures_of(value: sp.Rational) -> int | None:
+    """How many significant figures a terminating decimal has (``2109/10000``: 4), None otherwise."""
+    q, twos, fives = int(value.q), 0, 0
+    while q % 2 == 0:
+        q, twos = q // 2, twos + 1
+    while q % 5 == 0:
+        q, fives = q // 5, fives + 1
+    if q != 1:
+        return None
+    digits = str(abs(int(value.p)) * 10 ** max(twos, fives) // int(value.q)).strip("0")
+    return len(digits) if len(digits) <= 15 else None
+
+
+def _is_rounding(a: sp.Expr, r: sp.Expr, figures: int) -> bool:
+    """Whether the number ``a`` is ``r`` rounded to its ``figures`` (or more) significant figures."""
+    if a == r:
+        return True
+    if not (a.is_Rational and r.is_number) or a == 0 or r == 0:
+        return False
+    written = _figures_of(sp.Rational(a))
+    places = max(figures, written or figures)
+    size = abs(sp.Rational(a))
+    exponent = sp.floor(sp.log(size, 10)) if size else 0
+    half = sp.Rational(1, 2) * sp.Integer(10) ** (int(exponent) - places + 1)
+    return bool(abs(sp.N(a - r, 30)) <= half)
+
+
 def within_rounding(
-    text: str,
-    parse: Callable[[str, Mapping[str, sp.Symbol]], sp.Expr],
-    correct: sp.Expr,
-    figures: int,
-    factors: tuple[int, ...] = (1,),
+    given: sp.Expr, correct: sp.Expr, figures: int, state: frozenset[sp.Symbol], factors: tuple[int, ...] = (1,)
 ) -> int | None:
-    """Whether the answer ``text`` (ASCII grammar) is ``k`` times ``correct`` for one ``k`` of
-    ``factors`` once each of its decimals is read as a rounding to ``figures`` significant figures
-    (the module's rule). ``parse(text, extra)`` reads the text with ``extra`` names. Returns that
-    ``k``, or None (not equal, nothing to allow for, or fewer than half the states usable)."""
-    found = decimal_literals(text)
-    if not found or len(found) > MAX_DECIMALS or figures <= 0:
+    """The ``k`` of ``factors`` for which ``given`` is ``k`` times ``correct`` with each coefficient
+    rounded to ``figures`` significant figures (the module's rule), or None. The caller checks that
+    the answer holds a decimal and is small enough to expand (:func:`tutgen.check.equivalence.too_large`)."""
+    if figures <= 0:
         return None
-    names: dict[str, sp.Symbol] = {}
-    values: dict[sp.Symbol, sp.Expr] = {}
-    halves: dict[sp.Symbol, sp.Expr] = {}
-    pieces: list[str] = []
-    last = 0
-    for i, match in enumerate(found):
-        half = half_unit(match.group(), figures)
-        pieces.append(text[last : match.start()])
-        last = match.end()
-        if half is None:
-            pieces.append(match.group())
-            continue
-        name = f"zz_decimal_{i}_"
-        symbol = sp.Dummy(name)
-        names[name] = symbol
-        values[symbol] = number_to_rational(match.group())
-        halves[symbol] = number_to_rational(str(half))
-        pieces.append(name)
-    pieces.append(text[last:])
-    if not names:
-        return None
-    with_symbols = parse("".join(pieces), names)
-    given = with_symbols.xreplace(values)
-    slopes = [sp.diff(with_symbols, s).xreplace(values) * halves[s] for s in halves]
+    mine = groups(reduced(given), None)
     for k in factors:
-        if _agree(given, k * correct, slopes):
+        theirs = groups(reduced(k * correct), None)
+        if set(mine) != set(theirs):
+            continue
+        if all(_is_rounding(mine[key], theirs[key], figures) for key in theirs):
             return k
     return None
-
-
-def _agree(given: sp.Expr, correct: sp.Expr, slopes: list[sp.Expr]) -> bool:
-    used = 0
-    symbols = given.free_symbols | correct.free_symbols
-    for s in slopes:
-        symbols |= s.free_symbols
-    for state in random_states(symbols):
-        g, c = evaluate(given, state), evaluate(correct, state)
-        parts = [evaluate(s, state) for s in slopes]
-        if g is None or c is None or any(p is None for p in parts):
-            continue
-        if min(g.digits, c.digits) < NEEDED_DIGITS:
-            continue
-        used += 1
-        with mpmath.workdps(CHECK_DPS):
-            allowed = _SECOND_ORDER * mpmath.fsum(abs(p.value) for p in parts if p is not None)
-            allowed += mpmath.mpf(10) ** -NEEDED_DIGITS * max(abs(g.value), abs(c.value))
-            if abs(g.value - c.value) > allowed:
-                return False
-    return used * 2 > TRIALS

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import re
 import weakref
-from collections.abc import Mapping
 from dataclasses import dataclass
 from decimal import Decimal
 from typing import Any
@@ -19,7 +18,7 @@ import mpmath
 import sympy as sp
 
 from tutgen.check.answers import AnswerSheet, Tolerance
-from tutgen.check.decimals import half_unit, within_rounding
+from tutgen.check.decimals import decimal_literals, half_unit, within_rounding
 from tutgen.check.equivalence import (
     MAX_SCALE,
     MIN_SCALE,
@@ -108,8 +107,10 @@ class ScalarMarking:
             raise Unreadable(SpecError(loc, exc.message, exc.hint)) from None
         return expr.xreplace(self.ref.values) if self.ref.values else expr
 
-    def read(self, answer: Any, keypath: KeyPath) -> _Parsed | None:
-        """An answer scalar as sympy (None after recording an answers-file error)."""
+    def read(self, answer: Any, keypath: KeyPath, symbolic: bool = False) -> _Parsed | None:
+        """An answer scalar as sympy. ``symbolic``: the result has symbols, so ``2 m g`` whose words
+        are all names of the problem is the product ``2*m*g``, not 2 metres followed by a word; a
+        number with a unit otherwise stays a quantity (``2 m`` against a length is 2 metres)."""
         if isinstance(answer, bool):
             raise Unreadable(
                 SpecError(self.sheet.location(keypath), "expected an expression or a number, found true/false")
@@ -131,6 +132,11 @@ class ScalarMarking:
                 loc = self.sheet.source.expr_location(keypath, exc.offset)
                 raise Unreadable(SpecError(loc, exc.message, exc.hint)) from None
             return _Parsed(expr) if expr is not None else None
+        if quantity is not None and symbolic:
+            try:
+                return _Parsed(self.parseanswer_text(text, keypath))  # type: ignore[arg-type]
+            except (Unreadable, UnknownName):
+                pass  # not an expression in the problem's names: the quantity it reads as
         if quantity is not None:
             match = NUMBER_RE.match(text)
             assert match is not None
@@ -192,15 +198,15 @@ class ScalarMarking:
             return self.wrong(path, keypath, answer, result, f"expected {str(result).lower()}")
         if field_name == "equations_of_motion":
             return self.equation(answer, keypath, result, path)
+        correct = self.result_expr(result)
         try:
-            parsed = self.read(answer, keypath)
+            parsed = self.read(answer, keypath, symbolic=bool(correct.free_symbols))
         except UnknownName as exc:
             return self.wrong(path, keypath, answer, result, str(exc))
         except Unreadable as exc:
             return self.wrong(path, keypath, answer, result, exc.feedback)
         if parsed is None:
             return self.wrong(path, keypath, answer, result, "cannot read the answer")
-        correct = self.result_expr(result)
         expected_dim = DIMENSION_OF.get(field_name or "")
         if parsed.dimension is not None and expected_dim is not None and parsed.dimension != expected_dim:
             return self.wrong(
@@ -214,9 +220,8 @@ class ScalarMarking:
             decision = decide(given, correct, rel_tol=tol.rel, abs_tol=tol.abs)
         else:
             decision = decide(given, correct)
-        if decision.equal is False and isinstance(answer, str):
-            k = within_rounding(ascii_answer(answer).text, self.parse_with, correct, self.figures)
-            if k is not None:
+        if decision.equal is False and self.has_decimals(answer) and not too_large(given, correct):
+            if within_rounding(given, correct, self.figures, self.ref.state) is not None:
                 return self.right(path, keypath, answer, result, self.as_printed)
         if decision.equal is False and field_name in _DATUM_FIELDS:
             shift = self.datum_shift(given, correct)
@@ -237,17 +242,11 @@ class ScalarMarking:
     def as_printed(self) -> str:
         return f"as printed: each decimal is the result rounded to {self.figures} significant figures"
 
-    def parse_with(self, text: str, extra: Mapping[str, sp.Symbol]) -> sp.Expr:
-        """Answer text in the ASCII grammar, with ``extra`` names (the decimals of :mod:`decimals`)."""
-        expr = parse_expression(text, {**self.ref.symbols, **extra})
-        return expr.xreplace(self.ref.values) if self.ref.values else expr
-
-    def parse_equation_with(self, text: str, extra: Mapping[str, sp.Symbol]) -> sp.Expr:
-        text = text.replace("==", "=")
-        if "=" not in text:
-            return self.parse_with(text, extra)
-        lhs, rhs = text.split("=", 1)
-        return self.parse_with(lhs, extra) - self.parse_with(rhs, extra)
+    @staticmethod
+    def has_decimals(answer: Any) -> bool:
+        """Whether an answer holds a decimal literal (``0.2109``, ``1.5e-3``): then its coefficients may
+        be the result's as printed (:mod:`tutgen.check.decimals`)."""
+        return isinstance(answer, str) and bool(decimal_literals(ascii_answer(answer).text))
 
     def datum_shift(self, given: sp.Expr, correct: sp.Expr) -> sp.Expr | None:
         """``given - correct`` when it is a non-zero constant (free of the coordinates and rates): a
@@ -372,10 +371,8 @@ class ScalarMarking:
             remark = f"{name}: scaled by the constant factor {expr_text(k)}"
             how = f"scaled by {expr_text(k)}: equal up to this constant factor"
             return self.right(path, keypath, answer, result, how, remark)
-        if isinstance(answer, str):
-            text = ascii_answer(answer).text
-            k = within_rounding(text, self.parse_equation_with, correct, self.figures, factors=(1, -1))
-            if k is not None:
+        if self.has_decimals(answer) and not too_large(given, correct):
+            if within_rounding(given, correct, self.figures, self.ref.state, factors=(1, -1)) is not None:
                 return self.right(path, keypath, answer, result, self.as_printed)
         return self.wrong(path, keypath, answer, result, diagnose(self.scaled(given, correct), correct, self.ref.state))
 
@@ -411,7 +408,7 @@ class ScalarMarking:
             if lhs is None or rhs is None:
                 return None
             return lhs - rhs
-        parsed = self.read(answer, keypath)
+        parsed = self.read(answer, keypath, symbolic=True)
         return None if parsed is None else parsed.expr
 
 
