@@ -34,6 +34,7 @@ __all__ = [
     "TOLERANCE_KEYS",
     "build_marking",
     "describe_value",
+    "marking_data",
     "parse_key",
     "read_marking",
     "tolerance_fields",
@@ -263,3 +264,28 @@ def build_marking(ctx: Context) -> Marking | None:
     if ctx.doc.marking is None:  # none, or set aside for a shape error (already reported)
         return None
     return read_marking(ctx.doc.marking, ctx.smap, ("marking",), ctx.errors, path=ctx.smap.path, source="spec")
+
+
+def marking_data(marking: Marking) -> dict[str, Any]:
+    """A marking as the YAML mapping :func:`read_marking` reads (what a sheet writes for a variant)."""
+    out: dict[str, Any] = {}
+    if marking.ask is not None:
+        out["ask"] = [key for key, _, _ in marking.ask]
+    tolerance = _tolerance_data(marking.tolerance)
+    if tolerance:
+        out["tolerance"] = tolerance
+    if marking.rules:
+        items = {}
+        for rule in marking.rules:
+            items[rule.key] = _tolerance_data(rule.tolerance) | (
+                {} if rule.scaling is None else {"scaling": rule.scaling}
+            )
+        out["items"] = items
+    if marking.significant_figures is not None:
+        out["significant_figures"] = marking.significant_figures
+    return out
+
+
+def _tolerance_data(tolerance: Tolerance) -> dict[str, Any]:
+    fields = {"rel_tol": tolerance.rel_tol, "abs_tol": tolerance.abs_tol, "rounded": tolerance.rounded}
+    return {k: v for k, v in fields.items() if v is not None}
