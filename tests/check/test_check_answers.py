@@ -198,19 +198,19 @@ def test_answers_errors_are_located(text: str, expected: list[str]) -> None:
         pytest.param(
             "kinetic_energy: m*(r_dot**2\nmass_matrix: [[m*r**2, 0], [0, m]]\n",
             "kinetic_energy",
-            "cannot read the answer: unclosed '(': expected ')', found the end of the text [at answers.yaml:1:19]",
+            "cannot read the answer: unclosed '(': expected ')', found the end of the text (at 1:19)",
             id="unclosed-parenthesis",
         ),
         pytest.param(
             "mass_matrix[1,1]: 2 kgg\nmass_matrix[2,2]: m\n",
             "mass_matrix[1,1]",
-            "cannot read the answer: unknown unit 'kgg' (did you mean 'kg'?) [at answers.yaml:1:21]",
+            "cannot read the answer: unknown unit 'kgg' (did you mean 'kg'?) (at 1:21)",
             id="unknown-unit",
         ),
         pytest.param(
             "equations_of_motion: {theta: a = b = c}\nmass_matrix[2,2]: m\n",
             "equations_of_motion[1]",
-            "cannot read the answer: an equation has one '=': write 'lhs = rhs' [at answers.yaml:1:36]",
+            "cannot read the answer: an equation has one '=': write 'lhs = rhs' (at 1:36)",
             id="two-equals",
         ),
         pytest.param(

@@ -43,7 +43,7 @@ def test_students_unicode_parse_errors_point_into_the_text_as_written() -> None:
     result = mark_text(reference(ROD), 'kinetic_energy: "θ̇² · (3.532 ]"\n')
     status, feedback = verdicts(result)["kinetic_energy"]
     assert status is Status.WRONG
-    assert feedback.endswith(":1:31]"), feedback  # the ']' (column 31 of the line)
+    assert feedback.endswith("(at 1:31)"), feedback  # the ']' (column 31 of the line)
     assert errors(result) == []
 
 

@@ -41,7 +41,7 @@ def _arrangements(rows: int, cols: int) -> Iterator[tuple[str, Callable[[int, in
         for p in permutations(range(rows)):
             if list(p) != list(range(rows)):
                 yield (
-                    f"the coordinates are in another order: rows and columns {_order(p)}",
+                    f"rows and columns {_order(p)} (the coordinates in another order)",
                     lambda i, j, p=p: (p[i], p[j]),
                 )
     for p in permutations(range(rows)):

@@ -68,7 +68,8 @@ class Unreadable(Exception):
     @property
     def feedback(self) -> str:
         e = self.error
-        return f"cannot read the answer: {e.message}" + (f" ({e.hint})" if e.hint else "") + f" [at {e.location}]"
+        where = f" (at {e.location.line}:{e.location.col})" if e.location.line else ""
+        return f"cannot read the answer: {e.message}" + (f" ({e.hint})" if e.hint else "") + where
 
 
 @dataclass
