@@ -7,8 +7,9 @@ from pathlib import Path
 
 import pytest
 
-from tests.check.helpers import errors, mark_text, tutorial
+from tests.check.helpers import errors, mark_text, tutorial, verdicts
 from tutgen.check.answers import MSG_NO_TOLERANCE, RESULT_KEYS, Tolerance, parse_key, read_answers
+from tutgen.check.compare import Status
 from tutgen.errors import SpecErrors
 
 
@@ -168,21 +169,8 @@ NO_TOLERANCE = MSG_NO_TOLERANCE
             id="index-out-of-range",
         ),
         pytest.param(
-            "kinetic_energy: m*(r_dot**2\n",
-            ["answers.yaml:1:19: error: unclosed '(': expected ')', found the end of the text"],
-            id="unclosed-parenthesis",
-        ),
-        pytest.param(
-            "mass_matrix[1,1]: 2 kgg\n",
-            ["answers.yaml:1:21: error: unknown unit 'kgg'\n  hint: did you mean 'kg'?"],
-            id="unknown-unit",
-        ),
-        pytest.param(
             "equations_of_motion: {theta: a = b = c, s: 0}\n",
-            [
-                "answers.yaml:1:36: error: an equation has one '=': write 'lhs = rhs'",
-                "answers.yaml:1:41: error: equations_of_motion has no entry 's'; expected one of: theta, r",
-            ],
+            ["answers.yaml:1:41: error: equations_of_motion has no entry 's'; expected one of: theta, r"],
             id="equation-errors",
         ),
         pytest.param(
@@ -198,15 +186,52 @@ NO_TOLERANCE = MSG_NO_TOLERANCE
             ],
             id="answered-twice",
         ),
-        pytest.param(
-            "mass_matrix: [[m, 0], [0, true]]\n",
-            ["answers.yaml:1:27: error: expected an expression or a number, found true/false"],
-            id="boolean",
-        ),
     ],
 )
 def test_answers_errors_are_located(text: str, expected: list[str]) -> None:
     assert errors(mark_text(tutorial(4), text)) == expected
+
+
+@pytest.mark.parametrize(
+    ("text", "entry", "feedback"),
+    [
+        pytest.param(
+            "kinetic_energy: m*(r_dot**2\nmass_matrix: [[m*r**2, 0], [0, m]]\n",
+            "kinetic_energy",
+            "cannot read the answer: unclosed '(': expected ')', found the end of the text (at 1:19)",
+            id="unclosed-parenthesis",
+        ),
+        pytest.param(
+            "mass_matrix[1,1]: 2 kgg\nmass_matrix[2,2]: m\n",
+            "mass_matrix[1,1]",
+            "cannot read the answer: unknown unit 'kgg' (did you mean 'kg'?) (at 1:21)",
+            id="unknown-unit",
+        ),
+        pytest.param(
+            "equations_of_motion: {theta: a = b = c}\nmass_matrix[2,2]: m\n",
+            "equations_of_motion[1]",
+            "cannot read the answer: an equation has one '=': write 'lhs = rhs' (at 1:36)",
+            id="two-equals",
+        ),
+        pytest.param(
+            "mass_matrix: [[m*r**2, 0], [0, true]]\n",
+            "mass_matrix[2,2]",
+            "cannot read the answer: expected an expression or a number, found true/false",
+            id="boolean",
+        ),
+    ],
+)
+def test_answers_entry_that_does_not_parse_is_wrong_and_the_file_is_marked(
+    text: str, entry: str, feedback: str
+) -> None:
+    """One entry that does not parse is wrong, with its parse error at its place; the other entries of
+    the file are still marked (it used to make the whole file invalid, exit 3)."""
+    result = mark_text(tutorial(4), text)
+    marks = verdicts(result)
+    folder = str(Path(result.path).parent) + "/"
+    status, said = marks.pop(entry)
+    assert (status, said.replace(folder, "")) == (Status.WRONG, feedback)
+    assert marks and all(s is Status.CORRECT for s, _ in marks.values()), marks
 
 
 def test_answers_result_not_derived_for_this_spec() -> None:

@@ -69,4 +69,4 @@ def test_key_naming_a_result_this_spec_lacks_is_an_error(tmp_path: Path) -> None
     path.write_text("ask: [christoffel]\n")
     ref = with_key(tutorial(1), path)
     (problem,) = key_problems(ref)
-    assert str(problem).startswith(f"{path}:1:7: error: the marking key's 'christoffel' names no result")
+    assert str(problem).startswith(f"{path}:1:7: error: the marking's 'christoffel' names no result")

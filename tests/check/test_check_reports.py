@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import io
+import json
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -12,7 +13,7 @@ import pytest
 import xmlschema
 
 from tests.check.helpers import mark_text, tutorial
-from tutgen.check.report import render_junit, render_summary, render_table
+from tutgen.check.report import render_json, render_junit, render_summary, render_table
 from tutgen.check.run import CheckRun, FileResult
 
 SCHEMA = Path(__file__).parent / "junit.xsd"
@@ -62,3 +63,16 @@ def test_reports_terminal_text_has_no_control_characters(run: CheckRun) -> None:
     text = render_table(run)
     assert not any(c in text for c in "\x1b\x07\x00\x0b\x9b\u202e")
     assert "3 files: 0 pass, 1 fail, 1 invalid, 1 time limit" in text
+
+
+@pytest.mark.parametrize(
+    "render", [render_json, lambda r: render_summary(r, "json")], ids=["check-json", "summary-json"]
+)
+def test_reports_json_escapes_c1_controls_and_keeps_the_data(run: CheckRun, render: object) -> None:
+    """json.dumps escapes only what is below U+0020: a C1 control (CSI, U+009B) or a bidirectional
+    override would reach a terminal that shows the JSON. They are escaped; the data is unchanged."""
+    text = render(run)  # type: ignore[operator]
+    assert not any(c in text for c in "\x1b\x07\x00\x0b\x9b\u202e\x7f")
+    assert "\\u009b" in text and "\\u202e" in text
+    data = json.loads(text)
+    assert data["files"][0]["student"] == NAME

@@ -42,7 +42,9 @@ P05_ASKED = [
     "christoffel",
 ]
 MISSING_ALL = dict.fromkeys(P05_ASKED, "missing")
-#: file -> (file status, {item: status}) for the class run on p05; None: the items are not checked
+#: file -> (file status, {item: status}) for the class run on p05, with no marking key: every item the
+#: spec's ask derives is graded, so a file that answers one item right still fails (the others are
+#: missing); None: the items are not checked
 EXPECTED: dict[str, tuple[str, dict[str, str] | None]] = {
     "empty.yaml": ("fail", MISSING_ALL),
     "only-student.yaml": ("fail", MISSING_ALL),
@@ -52,16 +54,16 @@ EXPECTED: dict[str, tuple[str, dict[str, str] | None]] = {
     "pole-everywhere.yaml": ("fail", {"kinetic_energy": "cannot_evaluate"}),
     "hidden-zero-huge.yaml": ("fail", {"kinetic_energy": "cannot_evaluate"}),
     "hidden-zero-moderate.yaml": ("fail", {"kinetic_energy": "wrong"}),
-    "hidden-zero-right.yaml": ("pass", {"kinetic_energy": "correct"}),
+    "hidden-zero-right.yaml": ("fail", {"kinetic_energy": "correct"}),
     "scaled-tiny.yaml": ("fail", {"equations_of_motion": "wrong"}),
-    "scaled-moderate.yaml": ("pass", {"equations_of_motion": "correct"}),
+    "scaled-moderate.yaml": ("fail", {"equations_of_motion": "correct"}),
     "tolerance-in-answers.yaml": ("invalid", None),
     "item-tolerance.yaml": ("invalid", None),
     "answered-three-times.yaml": ("invalid", None),
     "expansion-bomb.yaml": ("fail", {"kinetic_energy": "wrong"}),
     "oscillating.yaml": ("fail", {"kinetic_energy": "wrong"}),
     "slow-expansion.yaml": ("fail", {"kinetic_energy": "time_limit"}),
-    "control-characters.yaml": ("pass", {"kinetic_energy": "correct"}),
+    "control-characters.yaml": ("fail", {"kinetic_energy": "correct"}),
 }
 P01_EXPECTED = {
     "p01-sqrt-of-negative.yaml": "cannot_evaluate",
@@ -120,7 +122,7 @@ def test_check_hostile_class_run(tmp_path: Path) -> None:
         marked = report[name]
         assert marked["status"] == status, (name, marked)
         if items is not None:
-            assert {i["name"]: i["status"] for i in marked["items"]} == items, name
+            assert {i["name"]: i["status"] for i in marked["items"]} == MISSING_ALL | items, name
     # the class summary, one row per file, always written; a student's formula is not a formula
     with summary.open(encoding="utf-8") as fh:
         rows = {Path(r["file"]).name: r for r in csv.DictReader(fh)}
@@ -133,6 +135,9 @@ def test_check_hostile_class_run(tmp_path: Path) -> None:
     assert [c.get("name") for c in suites["empty.yaml"].findall("testcase")] == P05_ASKED
     student = suites["control-characters.yaml"].find("properties/property[@name='student']")
     assert student is not None and student.get("value") == '=HYPERLINK("http://evil")'
+    # no marking key: the reports say the items graded were derived, not stated
+    assert json.loads(result.stdout)["marking"]["source"] == "derived"
+    assert json.loads(result.stdout)["marking"]["asked"] == P05_ASKED
 
 
 def test_check_hostile_numbers_without_a_real_value() -> None:
@@ -156,7 +161,7 @@ def test_check_hostile_file_time_limit_kills_the_file_not_the_run(tmp_path: Path
     rows = {Path(r["file"]).name: r for r in json.loads(summary.read_text())["files"]}
     assert rows["slow-expansion.yaml"]["status"] == "time_limit"
     assert rows["slow-expansion.yaml"]["time_limit"] == len(P05_ASKED)  # every asked item: not checked
-    assert rows["hidden-zero-right.yaml"]["status"] == "pass"
+    assert rows["hidden-zero-right.yaml"]["correct"] == 1  # marked: its one answer is right
     assert elapsed < 60, "the file limit did not stop the slow file"  # 36 s of expansion when unbounded
 
 

@@ -63,11 +63,12 @@ def test_sheet_writes_the_documented_layout(small: tuple[Path, Path]) -> None:
         for p in ("p03-cart-pendulum", "p06-two-prismatic", "p10-given-kinetic-energy"):
             assert f"variants/{v}/specs/{p}.yaml" in names
             assert f"variants/{v}/key-{p}.yaml" in names
+            assert f"variants/{v}/marking-{p}.yaml" in names
         for doc in ("questions.md", "questions.tex", "solutions.md", "solutions.tex"):
             assert f"variants/{v}/{doc}" in names
     figures = {f"figures/{p}.svg" for p in ("p03-cart-pendulum", "p06-two-prismatic", "p10-given-kinetic-energy")}
     assert figures <= names
-    assert len(names) == 4 + 3 + 1 + 3 * (3 * 2 + 4 + 3)
+    assert len(names) == 4 + 3 + 1 + 3 * (3 * 3 + 4 + 3)
 
 
 def test_markdown_sheets_show_each_problems_figure_beside_it(small: tuple[Path, Path]) -> None:

@@ -66,7 +66,7 @@ def test_sheet_errors_are_located_in_the_sheet(tmp_path: Path) -> None:
     s = str(sheet)
     assert got == [
         f"{s}:2:1: error: unknown key 'dat' in the sheet; expected one of: tutgen_sheet, title, course, date, "
-        "problems\n  hint: did you mean 'date'?",
+        "problems, marking\n  hint: did you mean 'date'?",
         f"{s}:7:7: error: the spec '{spec}' has no parameter 'mass1' (its parameters: m1, m2, l, k, g, F, tau)",
         f"{s}:8:11: error: no spec file 'missing.yaml' (looked for {tmp_path / 'missing.yaml'})",
         f"{s}:11:18: error: the range of parameter 'm' goes down: write [lo, hi] with lo <= hi",

@@ -93,3 +93,25 @@ def test_sheet_lock_is_exclusive_and_removed(tmp_path: Path) -> None:
     assert not lock_path(out).exists()
     with output_lock(out):  # free again
         pass
+
+
+def test_sheet_write_swaps_an_existing_output_in_one_step(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """On Linux the new tree and an existing -o are exchanged in one renameat2(RENAME_EXCHANGE): no
+    rename ever moves -o aside, so no moment exists without it."""
+    if not hasattr(os, "uname") or os.uname().sysname != "Linux":
+        pytest.skip("renameat2 is Linux's")
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "questions.md").write_text("old\n", encoding="utf-8")
+    moved: list[str] = []
+    real_rename = os.rename
+
+    def spy(src: object, dst: object) -> None:
+        moved.append(str(src))
+        real_rename(src, dst)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(os, "rename", spy)
+    write_tree(_plan(out), [("questions.md", "new\n")])
+    assert str(out) not in moved
+    assert (out / "questions.md").read_text(encoding="utf-8") == "new\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]

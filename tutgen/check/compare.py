@@ -31,9 +31,10 @@ from tutgen.check.answers import MSG_NO_TOLERANCE, TOLERANCE_KEYS, AnswerItem, A
 from tutgen.check.equivalence import NUMERIC_HOW, decide, too_large
 from tutgen.check.feedback import diagnose
 from tutgen.check.limits import AnswerTimeLimit, answer_deadline
+from tutgen.check.matrices import matrix_finding
 from tutgen.check.names import Path, entry_name, field_of, is_per_coordinate
 from tutgen.check.numeric import SEED, TRIALS
-from tutgen.check.scalars import ScalarMarking, answer_text
+from tutgen.check.scalars import ScalarMarking, UnknownName, Unreadable, answer_text
 from tutgen.check.verdicts import (
     ASKED_RESULTS,
     DEFAULT_ANSWER_TIMEOUT,
@@ -274,8 +275,8 @@ class _Marker(ScalarMarking):
                     self.error((*keypath, k), MSG_NO_TOLERANCE.format(key=k), key=True)
             answer, keypath = answer["value"], (*keypath, "value")
         if isinstance(answer, bool) and not isinstance(result, bool):
-            self.error(keypath, "expected an expression or a number, found true/false")
-            return []
+            feedback = "cannot read the answer: expected an expression or a number, found true/false"
+            return [self.wrong(path, keypath, answer, result, feedback)]
         if answer is None or (isinstance(answer, str) and not answer.strip()):
             return [EntryResult(entry_name(path), Status.MISSING, feedback="no answer", location=self.where(keypath))]
         if isinstance(result, dict):
@@ -380,6 +381,10 @@ class _Marker(ScalarMarking):
             rows = "a matrix" if result and isinstance(result[0], list) else f"a list of {n} entries"
             return [self.wrong(path, keypath, answer, result, f"expected {rows}, found a single value")]
         out = self.walk_items(answer, keypath, result, path)
+        if sum(e.status is Status.WRONG for e in out) >= 2:
+            finding = self.whole_matrix(answer, result)
+            if finding is not None:  # one message for the matrix, not one per misplaced entry
+                return [self.wrong(path, keypath, answer, result, finding)]
         is_axis = field_of(path) == "principal_axes" and bool(result) and not isinstance(result[0], list)
         if is_axis and len(answer) == n and any(e.status is Status.WRONG for e in out):
             # a principal axis is a direction: accepted pointing the other way
@@ -389,6 +394,25 @@ class _Marker(ScalarMarking):
                 note = f"{entry_name(path)} points the other way; accepted, an axis has no direction"
                 return [replace(e, feedback=note) for e in again]
         return out
+
+    def whole_matrix(self, answer: list[Any], result: list[Any]) -> str | None:
+        """What is wrong with a matrix answer as a whole (:func:`tutgen.check.matrices.matrix_finding`),
+        if it has the result's shape and every entry reads; within the per-answer time limit."""
+        shape = [len(row) for row in result if isinstance(row, list)]
+        if not shape or len(shape) != len(result) or len(answer) != len(result):
+            return None
+        if any(not isinstance(row, list) or len(row) != n for row, n in zip(answer, shape, strict=True)):
+            return None
+        try:
+            with answer_deadline(self.ref.answer_timeout):
+                correct = [[self.result_expr(v) for v in row] for row in result]
+                given = [
+                    [self.read(v, (), symbolic=bool(c.free_symbols)).expr for v, c in zip(row, crow, strict=True)]  # type: ignore[union-attr]
+                    for row, crow in zip(answer, correct, strict=True)
+                ]
+                return matrix_finding(given, correct, self.ref.state, self.ref.forces)
+        except (AnswerTimeLimit, MemoryError, RecursionError, UnknownName, Unreadable, AttributeError, TypeError):
+            return None  # an entry that does not read, or no time: the entries speak for themselves
 
     def walk_items(self, answer: list[Any], keypath: KeyPath, result: list[Any], path: Path) -> list[EntryResult]:
         """A list answer against a list result, entry by entry; short lists miss entries, long ones
@@ -457,7 +481,7 @@ def key_problems(ref: Reference) -> list[SpecError]:
     for key, segments, loc in named:
         found = marker.resolve_segments(segments)
         if isinstance(found, str):
-            out.append(SpecError(loc, f"the marking key's '{key}' names no result of this spec: {found}"))
+            out.append(SpecError(loc, f"the marking's '{key}' names no result of this spec: {found}"))
     return out
 
 

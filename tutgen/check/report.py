@@ -16,6 +16,7 @@ import csv
 import io
 import json
 import os
+import re
 import shutil
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
@@ -31,6 +32,7 @@ from tutgen.version import __version__
 
 __all__ = [
     "SUMMARY_FIELDS",
+    "json_text",
     "plan_reports",
     "render_json",
     "render_junit",
@@ -104,6 +106,7 @@ def run_to_json(run: CheckRun) -> dict[str, Any]:
         "spec": run.spec,
         "title": run.title,
         "summary": {"files": len(run.files), **{s: statuses.count(s) for s in FILE_STATUSES}},
+        "marking": {"source": run.marking, "asked": list(run.asked), "note": run.marking_note},
         "files": [
             {
                 "answers": f.path,
@@ -119,8 +122,21 @@ def run_to_json(run: CheckRun) -> dict[str, Any]:
     }
 
 
+#: What ``json.dumps`` leaves raw with ``ensure_ascii=False`` though a terminal or a viewer acts on it:
+#: DEL and the C1 controls (U+0080-U+009F, CSI among them), the bidirectional overrides, the line and
+#: paragraph separators. Escaped as ``\\uXXXX``: the data is kept, and the JSON means the same.
+_JSON_UNSAFE = re.compile("[\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]")
+
+
+def json_text(data: Any) -> str:
+    """``data`` as indented JSON (UTF-8 text), with every character of :data:`_JSON_UNSAFE` escaped
+    (``json.dumps`` escapes only those below U+0020)."""
+    text = json.dumps(data, indent=2, ensure_ascii=False)
+    return _JSON_UNSAFE.sub(lambda m: f"\\u{ord(m.group()):04x}", text) + "\n"
+
+
 def render_json(run: CheckRun) -> str:
-    return json.dumps(run_to_json(run), indent=2, ensure_ascii=False) + "\n"
+    return json_text(run_to_json(run))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -129,9 +145,17 @@ def render_json(run: CheckRun) -> str:
 
 
 def _details(item: ItemResult) -> str:
-    lines = [f"{e.name}: {e.status.value}: {e.feedback} ({e.location})" for e in item.problems]
-    lines += [f"remark: {r}" for r in item.remarks]
-    return "\n".join(lines)
+    """A failure's text: the entries that are not correct (remarks on the correct ones are not
+    failures; they go to the test case's system-out)."""
+    return "\n".join(f"{e.name}: {e.status.value}: {e.feedback} ({e.location})" for e in item.problems)
+
+
+def _remarks(item: ItemResult) -> list[str]:
+    """The remarks of an item: its own, and (when it is not correct) those of its correct entries,
+    each named, so that they never read as part of what is wrong."""
+    if item.status is Status.CORRECT:
+        return list(item.remarks)
+    return [f"{e.name}: correct: {e.feedback}" for e in item.entries if e.status is Status.CORRECT and e.feedback]
 
 
 def _line_of(location: str) -> str | None:
@@ -176,6 +200,7 @@ def render_junit(run: CheckRun) -> str:
         _element(props, "property", {"name": "spec", "value": run.spec})
         if f.student:
             _element(props, "property", {"name": "student", "value": f.student})
+        _element(props, "property", {"name": "marking", "value": run.marking_note or f"stated ({run.marking})"})
         n = fails = errs = 0
         if f.errors:
             case = _element(suite, "testcase", {"classname": stem, "name": "answers file", "file": f.path, "time": "0"})
@@ -194,8 +219,8 @@ def render_junit(run: CheckRun) -> str:
                 first = item.problems[0]
                 message = f"{first.name}: {first.feedback}"
                 _element(case, "failure", {"type": item.status.value, "message": message}, _details(item))
-            elif item.remarks:
-                _element(case, "system-out", None, "\n".join(item.remarks))
+            if _remarks(item):
+                _element(case, "system-out", None, "\n".join(_remarks(item)))
         for name, value in (("tests", n), ("failures", fails), ("errors", errs), ("skipped", 0)):
             suite.set(name, str(value))
         total, failures, errors = total + n, failures + fails, errors + errs
@@ -238,7 +263,7 @@ def render_summary(run: CheckRun, fmt: str) -> str:
     """The summary as ``csv`` or ``json`` text."""
     rows = summary_rows(run)
     if fmt == "json":
-        return json.dumps({"spec": run.spec, "files": rows}, indent=2, ensure_ascii=False) + "\n"
+        return json_text({"spec": run.spec, "files": rows})
     buffer = io.StringIO()
     writer = csv.DictWriter(buffer, fieldnames=SUMMARY_FIELDS, lineterminator="\n")
     writer.writeheader()
@@ -253,15 +278,17 @@ def render_summary(run: CheckRun, fmt: str) -> str:
 
 
 def _item_details(item: ItemResult) -> str:
+    """The details cell of an item's row: what is not correct, how numeric equalities were decided,
+    and (for a correct item) its remarks. A wrong item's correct entries get rows of their own."""
     lines = []
     for e in item.entries:
+        name = "" if e.name == item.name else f"{e.name}: "
         if e.status is not Status.CORRECT:
-            name = "" if e.name == item.name else f"{e.name}: "
             lines.append(f"{name}{e.feedback}  [{e.location}]")
-        elif e.how.startswith("numeric"):
-            name = "" if e.name == item.name else f"{e.name}: "
+        elif e.how.startswith("numeric") and item.status is Status.CORRECT:
             lines.append(f"{name}{e.how}")
-    lines += item.remarks
+    if item.status is Status.CORRECT:
+        lines += item.remarks
     return "\n".join(lines)
 
 
@@ -295,12 +322,19 @@ def render_table(run: CheckRun, *, color: bool = False, width: int = 120) -> str
         for item in f.items:
             mark = Text(_MARKS[item.status] + " " + item.status.value, style=_STYLES[item.status])
             table.add_row(mark, Text(item.name), Text(_item_details(item)))
+            if item.status is not Status.CORRECT:  # a correct entry's remark is not part of what is wrong
+                ok = Text(_MARKS[Status.CORRECT] + " " + Status.CORRECT.value, style=_STYLES[Status.CORRECT])
+                for e in item.entries:
+                    if e.status is Status.CORRECT and (e.feedback or e.how.startswith("numeric")):
+                        table.add_row(ok, Text(e.name), Text(e.feedback or e.how))
         console.print(table)
         c = _counts(f)
         extra = "".join(f", {c[s]} {s.replace('_', ' ')}" for s in ("cannot_evaluate", "time_limit") if c[s])
         console.print(f"{c['correct']} correct, {c['wrong']} wrong, {c['missing']} missing{extra}")
         if f.limit:
             console.print(Text(f"{f.path}: stopped before the end ({f.limit})"))
+        if run.marking_note:
+            console.print(Text(run.marking_note))
         return buffer.getvalue()
     table = Table(title=Text(f"answers to {run.spec}"), title_justify="left")
     for name in ("file", "student", "result", "correct", "wrong", "missing", "not correct"):
@@ -329,6 +363,8 @@ def render_table(run: CheckRun, *, color: bool = False, width: int = 120) -> str
         f"{len(run.files)} files: {statuses.count('pass')} pass, {statuses.count('fail')} fail, "
         f"{statuses.count('invalid')} invalid{extra}"
     )
+    if run.marking_note:
+        console.print(Text(run.marking_note))
     return buffer.getvalue()
 
 

@@ -34,9 +34,11 @@ from tutgen.errors import (
     EXIT_INTERNAL,
     EXIT_INVALID_SPEC,
     EXIT_OK,
+    Location,
     SpecErrors,
     UsageError,
 )
+from tutgen.model.marking import Marking
 
 __all__ = [
     "DEFAULT_FILE_TIMEOUT",
@@ -46,6 +48,7 @@ __all__ = [
     "load_reference",
     "mark_file",
     "mark_files",
+    "marking_for",
     "refuse_irregular",
 ]
 
@@ -92,6 +95,21 @@ class CheckRun:
     spec: str
     title: str
     files: tuple[FileResult, ...]
+    marking: str = "key"  # where the marked items were stated: key, spec, derived (not stated), answered
+    asked: tuple[str, ...] = ()  # the items marked in every file, when the run has a list of them
+
+    @property
+    def marking_note(self) -> str:
+        """A line for the reports when no marking stated the items graded (empty otherwise): the
+        grade is then of items derived by a rule, and an instructor must not take it for theirs."""
+        if self.marking == "derived":
+            return (
+                f"no marking key: {len(self.asked)} items graded, derived from the spec's ask "
+                f"({', '.join(self.asked) or 'none'}); state them with --key or the spec's marking:"
+            )
+        if self.marking == "answered":
+            return "no marking key: only the items each file answers are graded"
+        return ""
 
     @property
     def exit_code(self) -> int:
@@ -137,13 +155,24 @@ def load_reference(
     system = load_system(spec)
     seconds = DEFAULT_TIMEOUT if derive_timeout is None else derive_timeout
     ref = reference_from(system, derive_with_deadline(system, "both", seconds), str(spec))
-    ref = replace(ref, answer_timeout=answer_timeout)
-    if marking_key is not None:
-        ref = replace(ref, key=marking_key)
-        problems = key_problems(ref)
-        if problems:
-            raise SpecErrors(problems)
+    ref = replace(ref, answer_timeout=answer_timeout, key=marking_for(ref, marking_key or system.marking))
+    problems = key_problems(ref)
+    if problems:
+        raise SpecErrors(problems)
     return ref
+
+
+def marking_for(ref: Reference, stated: Marking | None) -> Marking:
+    """What ``tutgen check`` marks: the marking key (``--key``), else the spec's ``marking:``; the items
+    it asks, else (no ``ask`` stated anywhere) those derived from the spec's ``ask``
+    (:func:`tutgen.check.verdicts.derived_ask`), and then its ``source`` is ``derived``, so that the
+    reports say no marking was stated."""
+    marking = stated if stated is not None else Marking(ref.spec, source="derived")
+    if marking.ask is None:
+        where = Location(ref.spec)
+        ask = tuple((k, (k,), where) for k in ref.asked)
+        marking = replace(marking, ask=ask, source="derived")
+    return marking
 
 
 def mark_file(ref: Reference, path: str | Path) -> FileResult:
@@ -292,4 +321,5 @@ def check(
     refuse_irregular([spec, *answers, *([key] if key is not None else [])])
     ref = load_reference(spec, key=key, answer_timeout=answer_timeout)
     files = mark_files(ref, answers, jobs=jobs, on_done=on_done, file_timeout=file_timeout)
-    return CheckRun(ref.spec, ref.title, tuple(files))
+    asked = tuple(k for k, _, _ in ref.key.ask or ())
+    return CheckRun(ref.spec, ref.title, tuple(files), ref.key.source, asked)

@@ -18,6 +18,7 @@ import mpmath
 import sympy as sp
 
 from tutgen.check.answers import AnswerSheet, Tolerance
+from tutgen.check.decimals import decimal_literals, half_unit, within_rounding
 from tutgen.check.equivalence import (
     MAX_SCALE,
     MIN_SCALE,
@@ -31,6 +32,7 @@ from tutgen.check.equivalence import (
 )
 from tutgen.check.feedback import diagnose, number_feedback, round_half_up, significant
 from tutgen.check.names import DIMENSION_OF, TEXT_FIELDS, Path, entry_name, field_of
+from tutgen.check.notation import ascii_answer
 from tutgen.check.numeric import value_of_number
 from tutgen.check.verdicts import EntryResult, Reference, Status
 from tutgen.errors import SpecError
@@ -39,7 +41,11 @@ from tutgen.spec.expr import ExprError, number_to_rational, parse_expression
 from tutgen.spec.loader import KeyPath
 from tutgen.spec.units import Dimension, parse_quantity, parse_unit
 
-__all__ = ["NUMBER_RE", "ScalarMarking", "UnknownName", "answer_text"]
+__all__ = ["NUMBER_RE", "ScalarMarking", "UnknownName", "Unreadable", "answer_text"]
+
+#: Results measured from a datum: an answer off by a constant is right (a potential energy's zero is a
+#: choice; so is, with it, the Lagrangian's).
+_DATUM_FIELDS = frozenset({"potential_energy", "lagrangian"})
 
 NUMBER_RE = re.compile(r"\s*[-+]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][-+]?[0-9]+)?")
 
@@ -49,6 +55,21 @@ _result_cache: weakref.WeakKeyDictionary[Reference, dict[str, sp.Expr]] = weakre
 
 class UnknownName(Exception):
     """An answer that uses a name the problem does not have: a wrong answer, with this feedback."""
+
+
+class Unreadable(Exception):
+    """An answer that is not an expression or a quantity (an unclosed parenthesis, an unknown unit):
+    that entry is wrong, with the parse error and its place; the rest of the file is still marked."""
+
+    def __init__(self, error: SpecError) -> None:
+        super().__init__(str(error))
+        self.error = error
+
+    @property
+    def feedback(self) -> str:
+        e = self.error
+        where = f" (at {e.location.line}:{e.location.col})" if e.location.line else ""
+        return f"cannot read the answer: {e.message}" + (f" ({e.hint})" if e.hint else "") + where
 
 
 @dataclass
@@ -77,35 +98,46 @@ class ScalarMarking:
         self.errors.append(SpecError(loc, message, hint))
 
     def parseanswer_text(self, text: str, keypath: KeyPath, offset: int = 0) -> sp.Expr | None:
+        rewritten = ascii_answer(text)  # θ̇₁² as theta1_dot**2, 2 m g as 2*m*g
         try:
-            expr = parse_expression(text, self.ref.symbols)
+            expr = parse_expression(rewritten.text, self.ref.symbols)
         except ExprError as exc:
             if exc.message.startswith("unknown name"):
                 raise UnknownName(exc.message + (f" ({exc.hint})" if exc.hint else "")) from None
-            loc = self.sheet.source.expr_location(keypath, offset + exc.offset)
-            self.errors.append(SpecError(loc, exc.message, exc.hint))
-            return None
+            loc = self.sheet.source.expr_location(keypath, offset + rewritten.source_offset(exc.offset))
+            raise Unreadable(SpecError(loc, exc.message, exc.hint)) from None
         return expr.xreplace(self.ref.values) if self.ref.values else expr
 
-    def read(self, answer: Any, keypath: KeyPath) -> _Parsed | None:
-        """An answer scalar as sympy (None after recording an answers-file error)."""
+    def read(self, answer: Any, keypath: KeyPath, symbolic: bool = False) -> _Parsed | None:
+        """An answer scalar as sympy. ``symbolic``: the result has symbols, so ``2 m g`` whose words
+        are all names of the problem is the product ``2*m*g``, not 2 metres followed by a word; a
+        number with a unit otherwise stays a quantity (``2 m`` against a length is 2 metres)."""
         if isinstance(answer, bool):
-            self.error(keypath, "expected an expression or a number, found true/false")
-            return None
+            raise Unreadable(
+                SpecError(self.sheet.location(keypath), "expected an expression or a number, found true/false")
+            )
         if isinstance(answer, int | float):
             try:
                 value = number_to_rational(answer)
             except ExprError as exc:
-                self.error(keypath, exc.message)
-                return None
+                raise Unreadable(SpecError(self.sheet.location(keypath), exc.message)) from None
             literal = self.sheet.raw_number(keypath, answer) or repr(answer)
             return _Parsed(value, literal)
         text = str(answer)
         try:
             quantity = parse_quantity(text)
-        except ExprError as exc:
-            self.errors.append(SpecError(self.sheet.source.expr_location(keypath, exc.offset), exc.message, exc.hint))
-            return None
+        except ExprError as exc:  # a number and then no unit: perhaps a product (0.2109 θ̇², 2 m g)
+            try:
+                expr = self.parseanswer_text(text, keypath)
+            except (Unreadable, UnknownName):
+                loc = self.sheet.source.expr_location(keypath, exc.offset)
+                raise Unreadable(SpecError(loc, exc.message, exc.hint)) from None
+            return _Parsed(expr) if expr is not None else None
+        if quantity is not None and symbolic:
+            try:
+                return _Parsed(self.parseanswer_text(text, keypath))  # type: ignore[arg-type]
+            except (Unreadable, UnknownName):
+                pass  # not an expression in the problem's names: the quantity it reads as
         if quantity is not None:
             match = NUMBER_RE.match(text)
             assert match is not None
@@ -167,13 +199,15 @@ class ScalarMarking:
             return self.wrong(path, keypath, answer, result, f"expected {str(result).lower()}")
         if field_name == "equations_of_motion":
             return self.equation(answer, keypath, result, path)
+        correct = self.result_expr(result)
         try:
-            parsed = self.read(answer, keypath)
+            parsed = self.read(answer, keypath, symbolic=bool(correct.free_symbols))
         except UnknownName as exc:
             return self.wrong(path, keypath, answer, result, str(exc))
+        except Unreadable as exc:
+            return self.wrong(path, keypath, answer, result, exc.feedback)
         if parsed is None:
             return self.wrong(path, keypath, answer, result, "cannot read the answer")
-        correct = self.result_expr(result)
         expected_dim = DIMENSION_OF.get(field_name or "")
         if parsed.dimension is not None and expected_dim is not None and parsed.dimension != expected_dim:
             return self.wrong(
@@ -187,7 +221,43 @@ class ScalarMarking:
             decision = decide(given, correct, rel_tol=tol.rel, abs_tol=tol.abs)
         else:
             decision = decide(given, correct)
+        if decision.equal is False and self.has_decimals(answer) and not too_large(given, correct):
+            if within_rounding(given, correct, self.figures, self.ref.state) is not None:
+                return self.right(path, keypath, answer, result, self.as_printed)
+        if decision.equal is False and field_name in _DATUM_FIELDS:
+            shift = self.datum_shift(given, correct)
+            if shift is not None:
+                how = f"up to an additive constant: yours minus the correct expression is {expr_text(shift)}"
+                remark = f"{entry_name(path)} differs by a constant ({expr_text(shift)}): a different datum"
+                return self.right(path, keypath, answer, result, how, remark)
         return self.verdict(decision, given, correct, answer, keypath, result, path)
+
+    @property
+    def figures(self) -> int:
+        """The significant figures a decimal may be rounded to (0: decimals are exact): the marking's,
+        else those the spec's solution prints decimals with."""
+        stated = self.ref.key.significant_figures
+        return self.ref.figures if stated is None else stated
+
+    @property
+    def as_printed(self) -> str:
+        return f"as printed: each decimal is the result rounded to {self.figures} significant figures"
+
+    @staticmethod
+    def has_decimals(answer: Any) -> bool:
+        """Whether an answer holds a decimal literal (``0.2109``, ``1.5e-3``): then its coefficients may
+        be the result's as printed (:mod:`tutgen.check.decimals`)."""
+        return isinstance(answer, str) and bool(decimal_literals(ascii_answer(answer).text))
+
+    def datum_shift(self, given: sp.Expr, correct: sp.Expr) -> sp.Expr | None:
+        """``given - correct`` when it is a non-zero constant (free of the coordinates and rates): a
+        potential energy measured from another datum. Decided as every equality is (:func:`decide`)."""
+        if too_large(given, correct):
+            return None
+        shift = reduced(given - correct)
+        if shift == 0 or shift.free_symbols & self.ref.state:
+            return None
+        return shift if decide(given, correct + shift).equal else None
 
     def verdict(
         self,
@@ -252,6 +322,17 @@ class ScalarMarking:
         if close:
             limit = f"rel_tol {tol.rel:g}" if tol.rel * abs(correct) >= tol.abs else f"abs_tol {tol.abs:g}"
             return self.right(path, keypath, answer, result, f"within {limit}")
+        literal = parsed.literal or ""
+        half = half_unit(literal, self.figures) if self.figures and re.search(r"[.eE]", literal) else None
+        if half is not None:
+            in_unit = sp.N(self.result_expr(result) / parsed.unit_factor, 30)
+            if abs(number_to_rational(literal.lstrip("+")) - sp.Rational(str(in_unit))) <= sp.Rational(str(half)):
+                return self.right(path, keypath, answer, result, self.as_printed)
+            close_to = in_unit != 0 and abs(given - correct) <= 0.01 * abs(correct)  # a rounding, not a slip
+            shown = round_half_up(Decimal(str(in_unit)), self.figures) if close_to else None
+            if shown is not None:
+                said = number_feedback(given, correct, tol) + f"; to {self.figures} significant figures it is {shown}"
+                return self.wrong(path, keypath, answer, result, said)
         return self.wrong(path, keypath, answer, result, number_feedback(given, correct, tol))
 
     # -- equations of motion ------------------------------------------------------------------------
@@ -263,6 +344,8 @@ class ScalarMarking:
             given = self.read_equation(answer, keypath)
         except UnknownName as exc:
             return self.wrong(path, keypath, answer, result, str(exc))
+        except Unreadable as exc:
+            return self.wrong(path, keypath, answer, result, exc.feedback)
         if given is None:
             return self.wrong(path, keypath, answer, result, "cannot read the answer")
         correct = self.result_expr(result)
@@ -289,6 +372,9 @@ class ScalarMarking:
             remark = f"{name}: scaled by the constant factor {expr_text(k)}"
             how = f"scaled by {expr_text(k)}: equal up to this constant factor"
             return self.right(path, keypath, answer, result, how, remark)
+        if self.has_decimals(answer) and not too_large(given, correct):
+            if within_rounding(given, correct, self.figures, self.ref.state, factors=(1, -1)) is not None:
+                return self.right(path, keypath, answer, result, self.as_printed)
         return self.wrong(path, keypath, answer, result, diagnose(self.scaled(given, correct), correct, self.ref.state))
 
     def scaled(self, given: sp.Expr, correct: sp.Expr) -> sp.Expr:
@@ -314,13 +400,8 @@ class ScalarMarking:
         if isinstance(answer, str) and "=" in answer:
             text = answer.replace("==", "=")
             if text.count("=") != 1:
-                self.errors.append(
-                    SpecError(
-                        self.sheet.source.expr_location(keypath, answer.rfind("=")),
-                        "an equation has one '=': write 'lhs = rhs'",
-                    )
-                )
-                return None
+                loc = self.sheet.source.expr_location(keypath, answer.rfind("="))
+                raise Unreadable(SpecError(loc, "an equation has one '=': write 'lhs = rhs'"))
             lhs_text, rhs_text = text.split("=")
             offset = answer.index("=") + (2 if "==" in answer else 1)
             lhs = self.parseanswer_text(lhs_text, keypath)
@@ -328,7 +409,7 @@ class ScalarMarking:
             if lhs is None or rhs is None:
                 return None
             return lhs - rhs
-        parsed = self.read(answer, keypath)
+        parsed = self.read(answer, keypath, symbolic=True)
         return None if parsed is None else parsed.expr
 
 

@@ -14,18 +14,23 @@ from typing import Any
 import sympy as sp
 
 from tutgen.check.key import MarkingKey
+from tutgen.render.printer import SIGNIFICANT_FIGURES
 
 __all__ = [
     "ASKED_RESULTS",
     "DEFAULT_ANSWER_TIMEOUT",
+    "PRINTED_FIGURES",
     "EntryResult",
     "ItemResult",
     "Reference",
     "Status",
+    "derived_ask",
     "reference_from",
     "worst",
 ]
 
+#: The significant figures of the decimals in a worked solution when the spec does not say.
+PRINTED_FIGURES = SIGNIFICANT_FIGURES
 #: Seconds one answer (one entry) may take to mark (``tutgen check --timeout``).
 DEFAULT_ANSWER_TIMEOUT = 5.0
 #: What a spec's ``ask`` asks for, as result keys: the items a file with no answer is missing.
@@ -111,6 +116,7 @@ class Reference:
     forces: frozenset[sp.Symbol] = field(default_factory=frozenset)  # symbols of the generalized forces
     asked: tuple[str, ...] = ()  # result keys the spec asks for (its ``ask``), those it has
     key: MarkingKey = field(default_factory=MarkingKey)  # the instructor's marking key
+    figures: int = PRINTED_FIGURES  # the significant figures the spec's solution prints decimals with
     answer_timeout: float | None = DEFAULT_ANSWER_TIMEOUT  # seconds per entry (None: no limit)
 
 
@@ -136,8 +142,24 @@ def reference_from(system: Any, derivation: Any, spec: str) -> Reference:
         coordinates=tuple(c.name for c in system.coordinates),
         state=frozenset(state),
         forces=frozenset(forces),
-        asked=tuple(k for k in doc["results"] if k in {r for a in system.ask for r in ASKED_RESULTS.get(str(a), ())}),
+        asked=derived_ask(system, doc["results"]),
+        figures=getattr(system, "significant_figures", None) or PRINTED_FIGURES,
     )
+
+
+def derived_ask(system: Any, results: dict[str, Any]) -> tuple[str, ...]:
+    """The items marked when no marking states them, from the spec's ``ask`` (docs/check.md): each
+    asked step's results (:data:`ASKED_RESULTS`) that this spec has, in the order of the results,
+    without what the problem gives (a kinetic or potential energy stated in ``energy:``) and without
+    a gravity vector that is zero (nothing to answer)."""
+    wanted = {r for a in system.ask for r in ASKED_RESULTS.get(str(a), ())}
+    if getattr(system, "kinetic_energy", None) is not None:
+        wanted.discard("kinetic_energy")
+    if getattr(system, "potential_energy", None) is not None:
+        wanted.discard("potential_energy")
+    if all(str(g).strip() == "0" for g in results.get("gravity_vector") or ()):
+        wanted.discard("gravity_vector")
+    return tuple(k for k in results if k in wanted)
 
 
 # ---------------------------------------------------------------------------------------------

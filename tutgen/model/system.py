@@ -19,6 +19,7 @@ import sympy as sp
 
 from tutgen.errors import Location
 from tutgen.model.figure import FigureConfig
+from tutgen.model.marking import Marking
 from tutgen.model.simulation import Simulation
 from tutgen.spec.units import Dimension
 
@@ -224,6 +225,7 @@ class System:
     significant_figures: int | None = None
     figure: FigureConfig | None = None  # the spec's `figure:` section (drawing configuration, own picture)
     simulation: Simulation | None = None  # the spec's `simulate:` section (tutgen simulate)
+    marking: Marking | None = None  # the spec's `marking:` section: what `tutgen check` marks
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

@@ -8,6 +8,7 @@ output layout (docs/sheets.md)::
     variants/<id>/questions.<fmt>, solutions.<fmt>   per variant (or per student, by id)
     variants/<id>/specs/<problem>.yaml               its concrete specs: every parameter fixed
     variants/<id>/key-<problem>.yaml                 its answer keys, for `tutgen check`
+    variants/<id>/marking-<problem>.yaml             its marking keys (`tutgen check --key`)
     variants/index.csv                               id, name and the values of each variant
 """
 
@@ -23,6 +24,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from tutgen.engine.derivation import Derivation
+from tutgen.model.marking import Marking
 from tutgen.sheet.model import Sheet
 from tutgen.sheet.variants import Variant
 
@@ -38,6 +40,7 @@ class ProblemBase:
     path: str
     text: str
     derivation: Derivation
+    marking: Marking | None = None  # the sheet's or the problem's marking: (for its marking keys)
 
 
 @dataclass(frozen=True)
@@ -139,7 +142,7 @@ _memo: dict[Any, Any] = {}
 
 def build_job(shared: Shared, job: Job) -> JobResult:
     """Every file of one sheet (nominal or a variant); runs in a worker."""
-    from tutgen.sheet.render import answer_key, key_results, problem_view, render_sheet
+    from tutgen.sheet.render import answer_key, key_results, marking_key, problem_view, render_sheet
     from tutgen.sheet.variants import quantity_text, sample
 
     if _memo.get("build") != shared.build:
@@ -168,8 +171,9 @@ def build_job(shared: Shared, job: Job) -> JobResult:
                 if fresh:
                     t_derive += time.perf_counter() - t0
                 view = problem_view(base.number, d, solution=True)
-                _memo[memo_key] = (view, key_results(d), concrete, fresh, d.system)
-            view, results, concrete, fresh, system = _memo[memo_key]
+                marks = marking_key(d, base.marking, f"specs/{base.key}.yaml")
+                _memo[memo_key] = (view, key_results(d), concrete, fresh, d.system, marks)
+            view, results, concrete, fresh, system, marks = _memo[memo_key]
             if fresh:
                 rederived.append(base.key)
             views.append(view)
@@ -179,6 +183,7 @@ def build_job(shared: Shared, job: Job) -> JobResult:
             files.append((f"{prefix}specs/{base.key}.yaml", concrete))
             key = answer_key(results, f"specs/{base.key}.yaml", job.variant.label)
             files.append((f"{prefix}key-{base.key}.yaml", key))
+            files.append((f"{prefix}marking-{base.key}.yaml", marks))
     else:
         derivations = [substituted(b.derivation, b.derivation.system) for b in shared.problems]
         views = [problem_view(b.number, d, solution=True) for b, d in zip(shared.problems, derivations, strict=True)]
@@ -267,7 +272,7 @@ def build_sheet(
     shared = Shared(
         header={"title": sheet.title, "course": sheet.course, "date": sheet.date, "label": ""},
         problems=tuple(
-            ProblemBase(p.number, p.key, str(p.path), p.text, d)
+            ProblemBase(p.number, p.key, str(p.path), p.text, d, p.marking)
             for p, d in zip(sheet.problems, derivations, strict=True)
         ),
         formats=tuple(f for f in FORMATS if f in formats),
@@ -313,7 +318,7 @@ def file_names(sheet: Sheet, variants: Sequence[Variant], formats: Sequence[str]
     for v in variants:
         prefix = f"variants/{v.id}/"
         for p in sheet.problems:
-            names += [f"{prefix}specs/{p.key}.yaml", f"{prefix}key-{p.key}.yaml"]
+            names += [f"{prefix}specs/{p.key}.yaml", f"{prefix}key-{p.key}.yaml", f"{prefix}marking-{p.key}.yaml"]
         names += [f"{prefix}{kind}.{fmt}" for kind in ("questions", "solutions") for fmt in fmts]
         names += [f"{prefix}{name}" for name in figures]
     if variants:

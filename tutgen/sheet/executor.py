@@ -13,7 +13,9 @@ Workers end with the parent: a pool's workers ignore SIGINT (Ctrl-C reaches the 
 group; the parent decides) and, when the parent stops for any reason (an error, the deadline,
 Ctrl-C, SIGTERM), it terminates them (SIGTERM, then SIGKILL after a grace period) before it goes on.
 A worker that gets SIGTERM while it builds runs its cleanup first (a LaTeX compile's process group,
-its temporary directory), then exits; an idle one exits at once.
+its temporary directory), then exits; an idle one exits at once. On a Dask cluster the workers are not
+this process's to kill: when the parent stops, it cancels the sheet's tasks on the scheduler (the queued
+ones never start; a running one ends on its own and its result is dropped) and closes its client.
 """
 
 from __future__ import annotations
@@ -176,13 +178,24 @@ class DaskExecutor:
             return []
         shared_future = self.client.scatter(shared, broadcast=True)
         futures = [self.client.submit(fn, shared_future, job, pure=False) for job in jobs]
-        for _ in dask_completed(futures):
-            if on_done:
-                on_done()
-        return list(self.client.gather(futures))
+        try:
+            for _ in dask_completed(futures):
+                if on_done:
+                    on_done()
+            return list(self.client.gather(futures))
+        except BaseException:
+            # stopped (an error, the deadline, Ctrl-C, SIGTERM): the remote workers drop the sheet's
+            # queued tasks; a task already running ends on its own, and its result is discarded
+            from tutgen.limits import shielded
+
+            with shielded():
+                self.client.cancel([*futures, shared_future], force=True)
+                self.close()
+            raise
 
     def close(self) -> None:
         if self._owned:
+            self._owned = False  # closed once, whether by the caller or by a stopped map
             self.client.close()
 
 

@@ -28,19 +28,21 @@ import json
 import os
 import re
 import stat
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
 from tutgen.errors import Location, SpecError, SpecErrors
+from tutgen.model.marking import Marking
 from tutgen.model.system import System
+from tutgen.spec.builders.marking import read_marking
 from tutgen.spec.expr import did_you_mean
 from tutgen.spec.loader import SourceMap, load_yaml_file, load_yaml_text
 from tutgen.spec.richtext import RichTextError, parse_rich_text
 
 SHEET_FORMAT_VERSION = 1
-SHEET_KEYS = ("tutgen_sheet", "title", "course", "date", "problems")
-PROBLEM_KEYS = ("spec", "vary")
+SHEET_KEYS = ("tutgen_sheet", "title", "course", "date", "problems", "marking")
+PROBLEM_KEYS = ("spec", "vary", "marking")
 #: What a variant or a student id may look like: it names a directory.
 ID_RE = re.compile(r"[A-Za-z0-9][A-Za-z0-9._-]{0,63}")
 #: The longest field (in characters) a roster may hold; the longest roster file (in bytes).
@@ -64,6 +66,7 @@ class SheetProblem:
     path: Path
     text: str  # the spec text with the sheet's ``vary`` entries put in (the spec file's text without)
     system: System  # parameters at their nominal values; ``choices`` where they vary
+    marking: Marking | None = None  # what is marked: the problem's ``marking:``, else the sheet's
 
 
 @dataclass(frozen=True)
@@ -141,11 +144,20 @@ def load_sheet(path: str | Path) -> Sheet:
         where = ("problems",) if "problems" in data else ()
         errors.append(_error(smap, where, "the sheet needs 'problems': a list of spec files"))
         items = []
+    sheet_marking = None
+    if data.get("marking") is not None:  # copied into every variant's marking-<problem>.yaml
+        sheet_marking = read_marking(data["marking"], smap, ("marking",), errors, path=str(path), source="spec")
     keys: dict[str, int] = {}
     for i, item in enumerate(items):
         problem = _load_problem(path, smap, i, item, errors)
         if problem is None:
             continue
+        if isinstance(item, dict) and item.get("marking") is not None:
+            where = ("problems", i, "marking")
+            own = read_marking(item["marking"], smap, where, errors, path=str(path), source="spec")
+            problem = replace(problem, marking=own)
+        elif sheet_marking is not None:
+            problem = replace(problem, marking=sheet_marking)
         if problem.key in keys:
             errors.append(
                 _error(

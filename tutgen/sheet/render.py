@@ -20,6 +20,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from tutgen.engine.derivation import Derivation
+from tutgen.model.marking import Marking
 from tutgen.model.system import Ask
 from tutgen.render.blocks import prose, rich
 from tutgen.render.printer import TexPrinter
@@ -113,3 +114,29 @@ def key_results(derivation: Derivation) -> str:
 
     results = derivation_to_json(derivation)["results"]
     return yaml.safe_dump(results, sort_keys=False, allow_unicode=True, width=100, default_flow_style=None)
+
+
+def marking_key(derivation: Derivation, stated: Marking | None, spec_name: str) -> str:
+    """The marking key of one problem of one variant (``tutgen check --key``, docs/check.md): the
+    sheet's or the problem's ``marking:``, else the spec's; the items asked (when none is stated, those
+    derived from the spec's ``ask``, so that the key says what is graded), and the significant figures
+    this variant's solution prints decimals with, so that a decimal copied from it is right."""
+    import yaml
+
+    from tutgen.check.verdicts import PRINTED_FIGURES, derived_ask
+    from tutgen.render.jsonout import derivation_to_json
+    from tutgen.spec.builders.marking import marking_data
+
+    system = derivation.system
+    marking = stated if stated is not None else system.marking
+    data = marking_data(marking) if marking is not None else {}
+    note = "as the sheet or the spec states it"
+    if "ask" not in data:
+        data = {"ask": list(derived_ask(system, derivation_to_json(derivation)["results"])), **data}
+        note = "the items derived from the spec's ask (no marking: states them)"
+    data.setdefault("significant_figures", system.significant_figures or PRINTED_FIGURES)
+    head = (
+        f"# The marking key of {spec_name} ({note}): mark a student's answers with\n"
+        f"# `tutgen check {spec_name} ANSWERS --key THIS_FILE`.\n"
+    )
+    return head + yaml.safe_dump(data, sort_keys=False, allow_unicode=True, width=100, default_flow_style=None)

@@ -19,6 +19,7 @@ A sheet writes a whole tree, so it is planned and written as one:
 from __future__ import annotations
 
 import contextlib
+import ctypes
 import errno
 import fcntl
 import os
@@ -261,7 +262,7 @@ def write_tree(plan: SheetPlan, files: Sequence[tuple[str, str | bytes]]) -> Non
                 with open(path, "w", encoding="utf-8", newline="\n") as fh:
                     fh.write(content)
         current = ""
-        with shielded():  # the swap is two renames: nothing may stop it between them
+        with shielded():  # the swap is one exchange (or, where there is none, two renames): nothing may stop it
             check_existing(plan.out, plan.inputs, force=plan.force)  # as planned, still
             _swap(tmp, out)
     except BaseException as err:
@@ -273,10 +274,39 @@ def write_tree(plan: SheetPlan, files: Sequence[tuple[str, str | bytes]]) -> Non
         raise
 
 
+#: Linux's renameat2: the directory file descriptor meaning "the current directory", and the flag that
+#: swaps two paths in one atomic step.
+_AT_FDCWD = -100
+_RENAME_EXCHANGE = 2
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap the paths ``a`` and ``b`` in one atomic step (Linux ``renameat2(RENAME_EXCHANGE)``), so that
+    no moment exists in which ``b`` is missing; False where the system or file system has no such
+    call (the caller then renames twice)."""
+    try:
+        renameat2 = ctypes.CDLL(None, use_errno=True).renameat2
+    except (OSError, AttributeError):  # not Linux, or a C library older than glibc 2.28
+        return False
+    renameat2.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]
+    renameat2.restype = ctypes.c_int
+    if renameat2(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE) == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errno.EINVAL, errno.ENOSYS, errno.EOPNOTSUPP, errno.ENOTSUP):
+        return False  # a kernel or file system without the flag
+    raise OSError(err, os.strerror(err), str(b))
+
+
 def _swap(new: Path, out: Path) -> None:
-    """``new`` becomes ``out``; an existing ``out`` is moved aside first and removed after."""
+    """``new`` becomes ``out``. An existing ``out`` is exchanged with ``new`` in one atomic step where
+    the system can (Linux), then removed; elsewhere it is moved aside first, which leaves a moment
+    with no ``out`` at all (never a mixture: the old tree is put back if the second rename fails)."""
     if not os.path.lexists(out):
         os.rename(new, out)
+        return
+    if _exchange(new, out):
+        shutil.rmtree(new, ignore_errors=True)  # it holds the old output now
         return
     old = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".old", dir=out.parent))
     os.rename(out, old)  # replaces the empty directory just made

@@ -673,6 +673,11 @@ class SpecDoc(SpecModel):
     ask: list[AskItem] | None = Field(None, description="What to derive (default: everything that applies).")
     figure: FigureSpec | None = Field(None, description="How the figure is drawn, or the instructor's own picture.")
     simulate: SimulateSpec | None = Field(None, description="Initial conditions and inputs for `tutgen simulate`.")
+    marking: dict[str, Any] | None = Field(
+        None,
+        description="What `tutgen check` marks: {ask: [result keys], tolerance: {rel_tol, abs_tol, rounded}, "
+        "items: {result key: rule}, significant_figures: N} (docs/check.md, the marking key).",
+    )
 
 
 def json_schema() -> dict[str, Any]:

@@ -25,6 +25,7 @@ from tutgen.spec.builders.figure import build_figure
 from tutgen.spec.builders.gravity import build_gravity
 from tutgen.spec.builders.joints import build_joints, check_explicit_placement
 from tutgen.spec.builders.loads import build_generalized_forces, build_loads
+from tutgen.spec.builders.marking import build_marking
 from tutgen.spec.builders.parameters import build_parameters
 from tutgen.spec.builders.simulate import build_simulate
 from tutgen.spec.builders.texts import build_statement, build_texts, build_title
@@ -59,6 +60,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
     check_explicit_placement(ctx, placed)
     figure = build_figure(ctx)
     simulation = build_simulate(ctx)
+    marking = build_marking(ctx)
     texts = build_texts(ctx)  # last: their maths may use every declared name
     if ctx.errors:
         raise SpecErrors(ctx.errors)
@@ -90,5 +92,6 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
         significant_figures=ctx.doc.significant_figures,
         figure=figure,
         simulation=simulation,
+        marking=marking,
     )
     return with_texts(system, texts)
