@@ -83,6 +83,15 @@ def is_planar(system: System, ne: NewtonEuler) -> bool:
     return True
 
 
+def _tidy_coefficient(c: sp.Expr) -> sp.Expr:
+    """``tidy``, and a fraction over the parameters (a composite body's I_G holds 1/(m_a + m_b)) put
+    over one denominator when that is shorter."""
+    t = tidy(c)
+    if not any(p.exp.is_negative and p.base.free_symbols for p in t.atoms(sp.Pow)):
+        return t
+    return min((t, sp.factor_terms(sp.cancel(t))), key=sp.count_ops)
+
+
 def _zero(e: sp.Expr) -> bool:
     return sp.expand(e) == 0
 
@@ -133,7 +142,7 @@ class _Planar:
         self.balances = {b.body: b for b in ne.bodies}
 
     def tidy(self, e: sp.Expr) -> sp.Expr:
-        return group_rates(e, self.rates, tidy)
+        return group_rates(e, self.rates, _tidy_coefficient)
 
     def point(self, joint: str) -> Pair:
         return _pair(self.reactions[joint].point)

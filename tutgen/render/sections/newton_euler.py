@@ -7,9 +7,28 @@ from typing import Any
 
 import sympy as sp
 
-from tutgen.engine.newton_euler import PROJECTION_REMARK, NEMethod, NewtonEuler
-from tutgen.model.system import Ask, Coordinate
-from tutgen.render.blocks import SolutionContext, display, math, para, section, strong, tex_name, text
+from tutgen.engine.ne_types import (
+    PROJECTION_REMARK,
+    EliminationStep,
+    ForceKind,
+    NEMethod,
+    NewtonEuler,
+    PlanarBalance,
+    PlanarForce,
+    PlanarNewtonEuler,
+)
+from tutgen.model.system import Ask, Coordinate, JointKind
+from tutgen.render.blocks import (
+    SolutionContext,
+    display,
+    math,
+    para,
+    section,
+    stacked,
+    strong,
+    tex_name,
+    text,
+)
 from tutgen.render.printer import TexPrinter
 from tutgen.render.wording import engine_parts
 
@@ -18,6 +37,8 @@ def newton_euler(c: SolutionContext) -> dict[str, Any] | None:
     d, s = c.d, c.s
     if d.newton_euler is None or Ask.EQUATIONS_OF_MOTION not in s.ask:
         return None
+    if d.newton_euler.planar is not None:
+        return planar_section(d.newton_euler, d.newton_euler.planar, s.coordinates, c.tex, c.num)
     return newton_euler_section(d.newton_euler, s.coordinates, c.tex, c.num)
 
 
@@ -146,3 +167,223 @@ def newton_euler_section(
     if ne.agrees_with_lagrange:
         blocks.append(para(engine_parts(ne.agreement.detail + ".", tex)))
     return sec
+
+
+# -- planar systems: Newton–Euler as it is taught ---------------------------------------------
+
+_PLANAR_INTRO = (
+    "Newton–Euler in the plane, with D'Alembert's principle: each body is in equilibrium under every force "
+    "on it and its inertial force $-m\\mathbf a_G$ (at $G$) and couple $-I_G\\alpha$. "
+    "$\\mathbf R_j$ is the force the parent exerts on the child at joint $j$ (the parent receives "
+    "$-\\mathbf R_j$); a slide exerts a force $N_j$ normal to it and a couple $M_j$. "
+    "Moments are about the body's joint, counter-clockwise positive; $\\mathbf i$, $\\mathbf j$ are the "
+    "$x$ and $y$ directions."
+)
+
+
+def _name_unknowns(planar: PlanarNewtonEuler, tex: TexPrinter) -> None:
+    """R[pivot].x -> R_{pivot,x}; R[slide].n -> N_{slide}; M[slide] -> M_{slide}."""
+    for r in planar.reactions:
+        j = tex_name(r.joint)
+        for sym in r.unknowns:
+            name = sym.name
+            if name.startswith("M["):
+                tex.names[sym] = f"M_{{{j}}}"
+            elif name.endswith(".n"):
+                tex.names[sym] = f"N_{{{j}}}"
+            else:
+                tex.names[sym] = f"R_{{{j},{name[-1]}}}"
+
+
+def _ij(tex: TexPrinter, fx: sp.Expr, fy: sp.Expr) -> str:
+    """A plane vector as a teacher writes it: -k x\\,i + F\\,j, zero components left out."""
+    pieces = []
+    for c, unit in ((fx, "\\mathbf i"), (fy, "\\mathbf j")):
+        if c == 0:
+            continue
+        if c == 1 or c == -1:
+            pieces.append(("-" if c == -1 else "") + unit)
+            continue
+        s = tex(c)
+        if isinstance(c, sp.Add):
+            s = f"\\left({s}\\right)"
+        pieces.append(f"{s} {unit}")  # no thin space: the line breaker splits a term at a comma
+    if not pieces:
+        return "\\mathbf 0"
+    out = pieces[0]
+    for p in pieces[1:]:
+        out += (" " if p.startswith("-") else " + ") + p
+    return out
+
+
+def _at(tex: TexPrinter, point: tuple[sp.Expr, sp.Expr]) -> str:
+    return f"\\quad\\text{{at }}\\left({tex(point[0])},\\ {tex(point[1])}\\right)"
+
+
+def _label(f: PlanarForce, body_mass: str) -> tuple[str, str]:
+    """The symbols a force and its couple are named by on a free-body diagram."""
+    src = "\\text{" + (f.source or "").replace("_", "\\_") + "}"
+    if f.kind is ForceKind.GRAVITY:
+        return "\\mathbf W", ""
+    if f.kind is ForceKind.INERTIAL_FORCE:
+        return "\\mathbf F_{\\text{inertial}}", ""
+    if f.kind is ForceKind.INERTIAL_COUPLE:
+        return "", "M_{\\text{inertial}} = -I_G\\alpha"
+    if f.kind in (ForceKind.REACTION, ForceKind.REACTION_ON_PARENT):
+        j = tex_name(f.source or "")
+        sign = "" if f.kind is ForceKind.REACTION else "-"
+        return f"{sign}\\mathbf R_{{{j}}}", f"{sign}M_{{{j}}}"
+    if f.kind in (ForceKind.DRIVE, ForceKind.DRIVE_REACTION):
+        sign = "" if f.kind is ForceKind.DRIVE else "-"
+        return f"{sign}\\mathbf Q_{{{src}}}", f"{sign}Q_{{{src}}}"
+    if f.kind is ForceKind.ROTOR:
+        return "\\mathbf F_{\\text{rotor}}", "\\tau_{\\text{rotor}}"
+    sign = "-" if f.kind is ForceKind.LOAD_REACTION else ""
+    return f"{sign}\\mathbf F_{{{src}}}", f"{sign}\\tau_{{{src}}}"
+
+
+_WORDS = {
+    ForceKind.GRAVITY: "gravity",
+    ForceKind.LOAD: "applied",
+    ForceKind.LOAD_REACTION: "reaction of an applied load",
+    ForceKind.SPRING: "spring",
+    ForceKind.DAMPER: "damper",
+    ForceKind.DRIVE: "generalized force at its joint",
+    ForceKind.DRIVE_REACTION: "reaction of a generalized force",
+    ForceKind.ROTOR: "the geared rotor's reflected inertia",
+    ForceKind.REACTION: "joint reaction, on the child",
+    ForceKind.REACTION_ON_PARENT: "joint reaction, on the parent",
+    ForceKind.INERTIAL_FORCE: "D'Alembert",
+    ForceKind.INERTIAL_COUPLE: "D'Alembert",
+}
+
+
+def _force_lines(b: PlanarBalance, mass: str, tex: TexPrinter, num: Any) -> list[str]:
+    lines = []
+    for f in b.forces:
+        force_name, couple_name = _label(f, mass)
+        words = f"\\quad\\text{{({_WORDS[f.kind]})}}"
+        fx, fy = num(f.force[0]), num(f.force[1])
+        if f.kind is ForceKind.INERTIAL_FORCE:  # a_G is stated above
+            lines.append(f"{force_name} = -{mass}\\mathbf a_G\\quad\\text{{at }}G{words}")
+        elif fx != 0 or fy != 0:
+            at_g = f.kind is ForceKind.GRAVITY
+            where = "\\quad\\text{at }G" if at_g else _at(tex, (num(f.point[0]), num(f.point[1])))
+            lines.append(f"{force_name} = {_ij(tex, fx, fy)}{where}{words}")
+        t = num(f.torque)
+        if t != 0:
+            lines.append(f"{couple_name} = {tex(t)}{words}")
+    return lines
+
+
+def _balance_lhs(kind: str, b: str, about: str, axis: str) -> str:
+    return {
+        "moment": f"\\textstyle\\sum M_{{{about}}}^{{({b})}}",
+        "force": f"\\textstyle\\sum F_{{{axis}}}^{{({b})}}",
+    }[kind]
+
+
+def _axis_name(tex: TexPrinter, axis: tuple[sp.Expr, sp.Expr]) -> str:
+    if axis == (1, 0):
+        return "x"
+    if axis == (0, 1):
+        return "y"
+    return f"\\parallel {_ij(tex, *axis)}"
+
+
+def planar_section(
+    ne: NewtonEuler, planar: PlanarNewtonEuler, coordinates: tuple[Coordinate, ...], tex: TexPrinter, num: Any
+) -> dict[str, Any]:
+    """Per body: its motion, its free-body diagram and its three balances; then the equations of motion,
+    the reactions eliminated one coordinate at a time; then the reactions."""
+    _name_unknowns(planar, tex)
+    sec = section("Newton–Euler", _PLANAR_INTRO)
+    blocks = sec["blocks"]
+    masses = {b.body: b.mass for b in ne.bodies}
+    motions = {m.body: m for m in ne.motions}
+    axes = {r.joint: (r.axis[0], r.axis[1]) for r in ne.reactions}
+    kinds = {r.joint: r.kind for r in ne.reactions}
+    for b in planar.balances:
+        about = tex_name(b.joint)
+        mass = tex(num(masses[b.body])) if masses[b.body] != 0 else "m"
+        where = f"the pivot of joint '{b.joint}'" if kinds[b.joint] is JointKind.REVOLUTE else f"joint '{b.joint}'"
+        blocks.append(
+            para(
+                strong(b.body),
+                text(f": the free body, with moments about {where} at "),
+                math(f"\\left({tex(num(b.point[0]))},\\ {tex(num(b.point[1]))}\\right)"),
+                text("."),
+            )
+        )
+        m = motions.get(b.body)
+        if m is not None and (m.acceleration[0] != 0 or m.acceleration[1] != 0 or m.angular_acceleration[2] != 0):
+            motion = [f"\\mathbf a_{{G}} = {_ij(tex, num(m.acceleration[0]), num(m.acceleration[1]))}"]
+            if m.angular_acceleration[2] != 0:
+                motion.append(f"\\alpha = {tex(num(m.angular_acceleration[2]))}")
+            blocks.append(display(",\\quad ".join(motion)))
+        blocks.append(stacked(_force_lines(b, mass, tex, num)))
+        blocks.append(
+            stacked(
+                [
+                    tex.equation("\\textstyle\\sum F_x", num(b.sum_fx), "0"),
+                    tex.equation("\\textstyle\\sum F_y", num(b.sum_fy), "0"),
+                    tex.equation(f"\\textstyle\\sum M_{{{about}}}", num(b.sum_m), "0"),
+                ]
+            )
+        )
+    blocks.append(
+        para(
+            text(
+                "The reactions eliminated, one coordinate at a time from the tips inward: the balances of the "
+                "bodies that a change of that coordinate alone moves are added, so that the reactions between "
+                "them cancel and the joint's own reaction does no work."
+            )
+        )
+    )
+    for st in planar.steps:
+        blocks += _step_blocks(st, axes, kinds, coordinates, tex, num)
+    blocks.append(para(text("The reactions, solved last (tips first, each from its child's balances):")))
+    for r in planar.reactions:
+        lines = [f"{tex(u)} = {tex(num(v))}" for u, v in zip(r.unknowns, r.values, strict=True)]
+        blocks.append(stacked(lines))
+    blocks += [para(engine_parts(r, tex)) for r in ne.remarks if r != PROJECTION_REMARK and "Q_i" not in r]
+    if ne.agrees_with_lagrange:
+        blocks.append(para(engine_parts(ne.agreement.detail + ".", tex)))
+    return sec
+
+
+def _step_blocks(
+    st: EliminationStep,
+    axes: dict[str, tuple[sp.Expr, sp.Expr]],
+    kinds: dict[str, JointKind],
+    coordinates: tuple[Coordinate, ...],
+    tex: TexPrinter,
+    num: Any,
+) -> list[dict[str, Any]]:
+    coord = next(c for c in coordinates if c.name == st.coordinate)
+    j = tex_name(st.joint)
+    bodies = [c.body for c in st.contributions]
+    revolute = kinds[st.joint] is JointKind.REVOLUTE
+    if revolute:
+        what = f"the moments about the pivot of joint '{st.joint}'"
+    else:
+        what = "the forces along the slide of joint '" + st.joint + "'"
+    intro = [strong("Equation of"), text(" "), math(coord.latex), text(f": {what}, of "), text(", ".join(bodies))]
+    if st.eliminated:
+        intro += [text("; "), math(",\\ ".join(tex(u) for u in st.eliminated)), text(" cancel")]
+    intro.append(text("."))
+    lines = []
+    axis = _axis_name(tex, axes[st.joint])
+    for c in st.contributions:
+        b = tex_name(c.body)
+        if c.kind == "force_moment":
+            via = tex_name(c.via or "")
+            lhs = f"(\\mathbf r_{{{via}}} - \\mathbf r_{{{j}}})\\times{{\\textstyle\\sum}}\\mathbf F^{{({b})}}"
+        else:
+            lhs = _balance_lhs(c.kind, b, j, axis)
+        lines.append(tex.equation(lhs, num(c.expr)))
+    if len(st.contributions) > 1:
+        lines.append(tex.equation("\\text{sum}", num(st.result), "0"))
+    else:
+        lines[-1] += " = 0"
+    return [para(*intro), stacked(lines)]
