@@ -64,7 +64,9 @@ __all__ = [
 ]
 
 
-def derive_newton_euler(system: System, derivation: Derivation, kinematics: Kinematics | None = None) -> NewtonEuler:
+def derive_newton_euler(
+    system: System, derivation: Derivation, kinematics: Kinematics | None = None, planar: bool = True
+) -> NewtonEuler:
     """Derive the equations of motion body by body with Newton-Euler, and prove they equal Lagrange's.
 
     Parameters
@@ -72,6 +74,8 @@ def derive_newton_euler(system: System, derivation: Derivation, kinematics: Kine
     system : the validated spec; it must place bodies (not an ``energy:`` spec).
     derivation : Lagrange's derivation of the same system (its inertia and equations of motion).
     kinematics : the frames Lagrange's route built, reused; built again when omitted.
+    planar : also build the scalar form of a planar system (:mod:`tutgen.engine.planar_ne`), which
+        costs about a third more; leave it out when Newton–Euler is derived only for the agreement check.
 
     Returns
     =======
@@ -108,7 +112,11 @@ def derive_newton_euler(system: System, derivation: Derivation, kinematics: Kine
     kin = kinematics or Kinematics(system, {name: bi.com for name, bi in inertia.items()})
     rates = [*(c.qdd for c in system.coordinates), *(c.qd for c in system.coordinates)]
     builder = _Builder(system, kin, inertia, rates)
-    return builder.build(derivation.equations_of_motion)
+    ne = builder.build(derivation.equations_of_motion)
+    if not planar:
+        return ne
+    checkpoint("Newton-Euler: the planar form")
+    return dataclasses.replace(ne, planar=planar_newton_euler(system, kin, ne))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -429,8 +437,7 @@ class _Builder:
             agreement=agreement,
             remarks=tuple(self.remarks),
         )
-        checkpoint("Newton-Euler: the planar form")
-        return dataclasses.replace(ne, planar=planar_newton_euler(self.system, self.kin, ne))
+        return ne
 
     def balances_joints(
         self, joints: list[Joint], motions: dict[str, Motion], loads: dict[str, list[AppliedLoad]]

@@ -140,9 +140,17 @@ class _Planar:
         for j in system.joints:
             self.children.setdefault(j.parent, []).append(j)
         self.balances = {b.body: b for b in ne.bodies}
+        self.tidied: dict[sp.Expr, sp.Expr] = {}
 
     def tidy(self, e: sp.Expr) -> sp.Expr:
-        return group_rates(e, self.rates, _tidy_coefficient)
+        return group_rates(e, self.rates, self.coefficient)
+
+    def coefficient(self, c: sp.Expr) -> sp.Expr:
+        """A coefficient tidied once: the same ones recur in a body's balances, in the equations and in
+        the reactions (tidy's search is where the time of this route goes)."""
+        if c not in self.tidied:
+            self.tidied[c] = _tidy_coefficient(c)
+        return self.tidied[c]
 
     def point(self, joint: str) -> Pair:
         return _pair(self.reactions[joint].point)
@@ -307,7 +315,8 @@ class _Planar:
             else:  # its moments about its own joint's point, moved to this pivot
                 lever = _sub(self.point(self.by_child[body].name), o)
                 contributions.append(Contribution(body, "moment", None, m_own + _cross_z(lever, (fx, fy))))
-        total = sp.expand(sp.Add(*(c.expr for c in contributions)))
+        shaped = [Contribution(c.body, c.kind, c.via, self.tidy(c.expr)) for c in contributions]
+        total = sp.expand(sp.Add(*(c.expr for c in shaped)))  # the tidied terms: cheaper to tidy again
         present = set().union(*(c.expr.free_symbols for c in contributions)) & unknowns
         left = total.free_symbols & unknowns
         if left:  # a reaction that does work in this virtual motion: not a case this route knows
@@ -316,10 +325,10 @@ class _Planar:
         return EliminationStep(
             coordinate=joint.coordinate.name,
             joint=joint.name,
-            contributions=tuple(Contribution(c.body, c.kind, c.via, self.tidy(c.expr)) for c in contributions),
+            contributions=tuple(shaped),
             eliminated=tuple(sorted(present, key=sp.default_sort_key)),
             result=result,
-            equation=self.tidy(-total),
+            equation=-result,
         )
 
     def solve_reactions(self, raw: dict[str, tuple[sp.Expr, sp.Expr, sp.Expr]]) -> list[PlanarReaction]:
