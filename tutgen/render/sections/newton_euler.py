@@ -266,11 +266,18 @@ def _force_lines(b: PlanarBalance, mass: str, tex: TexPrinter, num: Any) -> list
         fx, fy = num(f.force[0]), num(f.force[1])
         if f.kind is ForceKind.INERTIAL_FORCE:  # a_G is stated above
             lines.append(f"{force_name} = -{mass}\\mathbf a_G\\quad\\text{{at }}G{words}")
-        elif fx != 0 or fy != 0:
+            continue
+        t = num(f.torque)
+        if f.kind in (ForceKind.REACTION, ForceKind.REACTION_ON_PARENT) and t != 0:
+            # a reaction couple is its own unknown (M_j): named beside the force, not "M_j = M_j"
+            where = _at(tex, (num(f.point[0]), num(f.point[1])))
+            couple = f"\\ \\text{{and the couple }}{tex(t)}"
+            lines.append(f"{force_name} = {_ij(tex, fx, fy)}{where}{couple}{words}")
+            continue
+        if fx != 0 or fy != 0:
             at_g = f.kind is ForceKind.GRAVITY
             where = "\\quad\\text{at }G" if at_g else _at(tex, (num(f.point[0]), num(f.point[1])))
             lines.append(f"{force_name} = {_ij(tex, fx, fy)}{where}{words}")
-        t = num(f.torque)
         if t != 0:
             lines.append(f"{couple_name} = {tex(t)}{words}")
     return lines
@@ -343,10 +350,11 @@ def planar_section(
     for st in planar.steps:
         blocks += _step_blocks(st, axes, kinds, coordinates, tex, num)
     blocks.append(para(text("The reactions, solved last (tips first, each from its child's balances):")))
-    for r in planar.reactions:
+    for r in reversed(planar.reactions):  # the tips first, as they are solved
         lines = [f"{tex(u)} = {tex(num(v))}" for u, v in zip(r.unknowns, r.values, strict=True)]
         blocks.append(stacked(lines))
-    blocks += [para(engine_parts(r, tex)) for r in ne.remarks if r != PROJECTION_REMARK and "Q_i" not in r]
+    # the recursive route's remarks (what enters as Q_i, what is subtracted behind an absolute angle)
+    # describe its own form; here every force is on its free body and the steps say what is added
     if ne.agrees_with_lagrange:
         blocks.append(para(engine_parts(ne.agreement.detail + ".", tex)))
     return sec
@@ -372,6 +380,16 @@ def _step_blocks(
     if st.eliminated:
         intro += [text("; "), math(",\\ ".join(tex(u) for u in st.eliminated)), text(" cancel")]
     intro.append(text("."))
+    carried = [c for c in st.contributions if c.kind == "force_moment"]
+    if carried:
+        names = ", ".join(c.body for c in carried)
+        vias = ", ".join(sorted({f"'{c.via}'" for c in carried}))
+        intro.append(
+            text(
+                f" The angle at joint {vias} is absolute, so {names} does not turn when only this angle changes: "
+                "it moves with that joint's point, and only the moment of its forces there counts."
+            )
+        )
     lines = []
     axis = _axis_name(tex, axes[st.joint])
     for c in st.contributions:
