@@ -107,37 +107,47 @@ def newton_euler_section(
             )
         )
         m = motions.get(b.body)
-        if m is not None:
-            blocks.append(
-                display(
-                    f"\\omega_{{{name}}} = {tex(num(m.angular_velocity))},\\quad "
-                    f"\\alpha_{{{name}}} = {tex(num(m.angular_acceleration))},\\quad "
-                    f"\\mathbf a_{{G,{name}}} = {tex(num(m.acceleration))}"
+        if m is not None:  # each link's motion stated once; zero vectors and components left out
+            motion = [
+                f"{sym} = {_ijk(tex, num(v))}"
+                for sym, v in (
+                    (f"\\omega_{{{name}}}", m.angular_velocity),
+                    (f"\\alpha_{{{name}}}", m.angular_acceleration),
+                    (f"\\mathbf a_{{G,{name}}}", m.acceleration),
                 )
-            )
-        terms = [f"\\mathbf F_{{{_tex_label(ld.name)}}} = {tex(num(ld.force))}" for ld in b.loads if _nonzero(ld.force)]
+                if _nonzero(num(v))
+            ]
+            if motion:
+                blocks.append(display(",\\quad ".join(motion)))
+        terms = [
+            f"\\mathbf F_{{{_tex_label(ld.name)}}} = {_ijk(tex, num(ld.force))}" for ld in b.loads if _nonzero(ld.force)
+        ]
         terms += [
-            f"\\boldsymbol\\tau_{{{_tex_label(ld.name)}}} = {tex(num(ld.torque))}"
+            f"\\boldsymbol\\tau_{{{_tex_label(ld.name)}}} = {_ijk(tex, num(ld.torque))}"
             for ld in b.loads
             if _nonzero(ld.torque)
         ]
-        terms.append(f"-m\\mathbf a_G = {tex(num(b.inertial_force))}")
+        if m is not None:  # a_G is stated above
+            terms.append(f"-m\\mathbf a_G = -{tex(num(b.mass))}\\,\\mathbf a_{{G,{name}}}")
+        else:
+            terms.append(f"-m\\mathbf a_G = {_ijk(tex, num(b.inertial_force))}")
         if _nonzero(b.inertial_moment):
-            terms.append(f"-(I_G\\alpha + \\omega\\times I_G\\omega) = {tex(num(b.inertial_moment))}")
+            terms.append(f"-(I_G\\alpha + \\omega\\times I_G\\omega) = {_ijk(tex, num(b.inertial_moment))}")
         blocks.append(display(",\\quad ".join(terms)))
         if b.joint_in is None:  # no named reactions: what is left is balanced by the constraint forces
             blocks.append(
                 display(
-                    f"{{\\textstyle\\sum}} \\mathbf F - m\\mathbf a_G = {tex(num(b.force_balance))} = -\\mathbf F_c,"
+                    f"{{\\textstyle\\sum}} \\mathbf F - m\\mathbf a_G = "
+                    f"{_ijk(tex, num(b.force_balance))} = -\\mathbf F_c,"
                     f"\\quad {{\\textstyle\\sum}} \\mathbf M_G - (I_G\\alpha + \\omega\\times I_G\\omega) = "
-                    f"{tex(num(b.moment_balance))} = -\\mathbf M_c"
+                    f"{_ijk(tex, num(b.moment_balance))} = -\\mathbf M_c"
                 )
             )
         else:
             blocks.append(
                 display(
-                    f"{{\\textstyle\\sum}} \\mathbf F = {tex(num(b.force_balance))} = \\mathbf 0,\\quad "
-                    f"{{\\textstyle\\sum}} \\mathbf M = {tex(num(b.moment_balance))} = \\mathbf 0"
+                    f"{{\\textstyle\\sum}} \\mathbf F = {_ijk(tex, num(b.force_balance))} = \\mathbf 0,\\quad "
+                    f"{{\\textstyle\\sum}} \\mathbf M = {_ijk(tex, num(b.moment_balance))} = \\mathbf 0"
                 )
             )
     if ne.reactions:
@@ -145,7 +155,10 @@ def newton_euler_section(
         for r in ne.reactions:
             j = tex_name(r.joint)
             blocks.append(
-                display(f"\\mathbf R_{{{j}}} = {tex(num(r.force))},\\quad \\mathbf N_{{{j}}} = {tex(num(r.moment))}")
+                display(
+                    f"\\mathbf R_{{{j}}} = {_ijk(tex, num(r.force))},\\quad "
+                    f"\\mathbf N_{{{j}}} = {_ijk(tex, num(r.moment))}"
+                )
             )
     blocks.append(para(text("The equation of each coordinate:")))
     for e in ne.equations:
@@ -196,9 +209,18 @@ def _name_unknowns(planar: PlanarNewtonEuler, tex: TexPrinter) -> None:
 
 
 def _ij(tex: TexPrinter, fx: sp.Expr, fy: sp.Expr) -> str:
-    """A plane vector as a teacher writes it: -k x\\,i + F\\,j, zero components left out."""
+    """A plane vector as a teacher writes it: -k x i + F j, zero components left out."""
+    return _components(tex, ((fx, "\\mathbf i"), (fy, "\\mathbf j")))
+
+
+def _ijk(tex: TexPrinter, v: sp.MatrixBase) -> str:
+    """A vector of world components as x i + y j + z k, zero components left out."""
+    return _components(tex, tuple(zip(v, ("\\mathbf i", "\\mathbf j", "\\mathbf k"), strict=True)))
+
+
+def _components(tex: TexPrinter, pairs: tuple[tuple[sp.Expr, str], ...]) -> str:
     pieces = []
-    for c, unit in ((fx, "\\mathbf i"), (fy, "\\mathbf j")):
+    for c, unit in pairs:
         if c == 0:
             continue
         if c == 1 or c == -1:
