@@ -242,8 +242,9 @@ def _at(tex: TexPrinter, point: tuple[sp.Expr, sp.Expr]) -> str:
     return f"\\quad\\text{{at }}\\left({tex(point[0])},\\ {tex(point[1])}\\right)"
 
 
-def _label(f: PlanarForce, body_mass: str) -> tuple[str, str]:
-    """The symbols a force and its couple are named by on a free-body diagram."""
+def _label(f: PlanarForce, coords: dict[str, str]) -> tuple[str, str]:
+    """The symbols a force and its couple are named by on a free-body diagram (a generalized force by
+    its coordinate: Q_theta)."""
     src = "\\text{" + (f.source or "").replace("_", "\\_") + "}"
     if f.kind is ForceKind.GRAVITY:
         return "\\mathbf W", ""
@@ -257,7 +258,8 @@ def _label(f: PlanarForce, body_mass: str) -> tuple[str, str]:
         return f"{sign}\\mathbf R_{{{j}}}", f"{sign}M_{{{j}}}"
     if f.kind in (ForceKind.DRIVE, ForceKind.DRIVE_REACTION):
         sign = "" if f.kind is ForceKind.DRIVE else "-"
-        return f"{sign}\\mathbf Q_{{{src}}}", f"{sign}Q_{{{src}}}"
+        q = coords.get(f.source or "", src)
+        return f"{sign}\\mathbf Q_{{{q}}}", f"{sign}Q_{{{q}}}"
     if f.kind is ForceKind.ROTOR:
         return "\\mathbf F_{\\text{rotor}}", "\\tau_{\\text{rotor}}"
     sign = "-" if f.kind is ForceKind.LOAD_REACTION else ""
@@ -280,10 +282,10 @@ _WORDS = {
 }
 
 
-def _force_lines(b: PlanarBalance, mass: str, tex: TexPrinter, num: Any) -> list[str]:
+def _force_lines(b: PlanarBalance, mass: str, coords: dict[str, str], tex: TexPrinter, num: Any) -> list[str]:
     lines = []
     for f in b.forces:
-        force_name, couple_name = _label(f, mass)
+        force_name, couple_name = _label(f, coords)
         words = f"\\quad\\text{{({_WORDS[f.kind]})}}"
         fx, fy = num(f.force[0]), num(f.force[1])
         if f.kind is ForceKind.INERTIAL_FORCE:  # a_G is stated above
@@ -350,7 +352,8 @@ def planar_section(
             if m.angular_acceleration[2] != 0:
                 motion.append(f"\\alpha = {tex(num(m.angular_acceleration[2]))}")
             blocks.append(display(",\\quad ".join(motion)))
-        blocks.append(stacked(_force_lines(b, mass, tex, num)))
+        coords = {c.name: c.latex for c in coordinates}
+        blocks.append(stacked(_force_lines(b, mass, coords, tex, num)))
         blocks.append(
             stacked(
                 [
