@@ -388,9 +388,10 @@ def test_newton_euler_markdown_section() -> None:
     _, d, _ = solved(str(P03))
     text = render_markdown(d)
     section = text[text.index("Newton–Euler") :]
-    assert "**pendulum** (moments about the origin of joint 'pivot'):" in section
+    # planar: the free body and its moments about the pivot (tests/engine/test_planar_ne.py has the records)
+    assert "**pendulum**: the free body, with moments about the pivot of joint 'pivot'" in section
     assert "-m\\mathbf a_G" in section and "R_{\\mathrm{pivot},x}" in section
-    assert "\\mathbf R_{\\mathrm{pivot}} = " in section
+    assert "\\mathbf R_{\\mathrm{pivot}} &= " in section  # the free body lists it, aligned
     assert "The Newton–Euler equations agree with Lagrange's." in section
 
 

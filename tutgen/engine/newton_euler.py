@@ -25,142 +25,48 @@ Each equation is put in Lagrange's contract, (H q_ddot + C + G - Q)_i = 0, and c
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass
-from enum import StrEnum
+import dataclasses
 
 import sympy as sp
 
 from tutgen.engine.derivation import Check, Derivation
 from tutgen.engine.inertia import BodyInertia, body_inertia
 from tutgen.engine.kinematics import Kinematics
+from tutgen.engine.ne_types import (
+    PROJECTION_REMARK,
+    ZERO,
+    AppliedLoad,
+    BodyBalance,
+    CoordinateEquation,
+    JointReaction,
+    Motion,
+    NEMethod,
+    NewtonEuler,
+    Vec,
+    group_rates,
+)
+from tutgen.engine.planar_ne import planar_newton_euler
 from tutgen.engine.tidy import is_zero, tidy, trig_reduce
 from tutgen.errors import AgreementError, DerivationError
 from tutgen.limits import checkpoint
 from tutgen.model.system import GROUND, Joint, JointKind, System
 
-Vec = sp.ImmutableMatrix
-ZERO = sp.ImmutableMatrix.zeros(3, 1)
+__all__ = [
+    "PROJECTION_REMARK",
+    "AppliedLoad",
+    "BodyBalance",
+    "CoordinateEquation",
+    "JointReaction",
+    "Motion",
+    "NEMethod",
+    "NewtonEuler",
+    "derive_newton_euler",
+]
 
 
-PROJECTION_REMARK = (
-    "The bodies are placed by positions and orientations, not by joints, so the constraint forces are not "
-    "named: the Newton–Euler route projects each body's D'Alembert force -m a_G and couple "
-    "-(I_G alpha + omega x I_G omega), with the applied forces, onto the partial velocities dv_G/dq_dot_i and "
-    "domega/dq_dot_i (virtual work, Kane's method); the constraint forces do no work and drop out."
-)
-
-
-class NEMethod(StrEnum):
-    RECURSIVE = "recursive"  # a serial chain of relative joints: outward then inward recursion
-    PER_BODY = "per_body"  # a tree of joints (branches, absolute angles): free body by free body
-    PROJECTION = "projection"  # bodies placed by positions: D'Alembert forces on partial velocities
-
-
-@dataclass(frozen=True)
-class AppliedLoad:
-    """One applied force (acting through ``point``) and/or couple on a body, world components."""
-
-    name: str  # "gravity", "load 'push'", "reaction of load 'motor'", "spring 'tie'", "damper 'drag'"
-    force: Vec
-    point: Vec
-    torque: Vec
-
-
-@dataclass(frozen=True)
-class Motion:
-    """A body's angular velocity and acceleration and the acceleration of its centre of mass.
-
-    ``origin_acceleration`` (of the body frame's origin) is set by the outward recursion; ``via``
-    says how the values were found (the joint of the recursion, or differentiation of v_G)."""
-
-    body: str
-    angular_velocity: Vec
-    angular_acceleration: Vec
-    origin_acceleration: Vec | None
-    acceleration: Vec
-    via: str
-
-
-@dataclass(frozen=True)
-class BodyBalance:
-    """One body's free-body diagram with D'Alembert's inertial terms, and its two balances.
-
-    ``force_balance`` and ``moment_balance`` (about ``point``) are the sums of all forces and moments
-    on the body, with the reactions as the unknown symbols of :class:`JointReaction`; each equals 0.
-    """
-
-    body: str
-    mass: sp.Expr
-    about: str  # the moment point in words: "the origin of joint 'pivot'", "G"
-    point: Vec
-    loads: tuple[AppliedLoad, ...]
-    inertial_force: Vec  # -m a_G, at G
-    inertial_moment: Vec  # -(I_G alpha + omega x I_G omega)
-    joint_in: str | None  # the joint that places this body: it receives +(R, N)
-    joints_out: tuple[str, ...]  # the joints to its children: it receives -(R, N)
-    force_balance: Vec
-    moment_balance: Vec
-
-
-@dataclass(frozen=True)
-class JointReaction:
-    """What the parent exerts on the child through one joint, solved in q, q_dot, q_ddot.
-
-    ``moment`` is about ``point`` (the child frame's origin). ``along_axis`` is the projection that the
-    coordinate's equation uses: z . N for a revolute joint, z . R for a prismatic one."""
-
-    joint: str
-    kind: JointKind
-    parent: str
-    child: str
-    coordinate: str | None
-    axis: Vec  # world components
-    point: Vec
-    force: Vec
-    moment: Vec
-    unknown_force: Vec  # the symbols that stand for R_j in the balances
-    unknown_moment: Vec
-    along_axis: sp.Expr | None
-
-
-@dataclass(frozen=True)
-class CoordinateEquation:
-    """The equation of one coordinate after the reactions are eliminated.
-
-    ``projection`` is z_j . N_j (or z_j . R_j) minus the moments of subtrees behind absolute angles
-    (``subtracted``), or, for the projection method, the sum over the bodies of the D'Alembert and
-    applied forces on the partial velocities, negated; ``generalized_force`` is Q_i at the joint.
-    ``equation`` = projection - generalized_force, in Lagrange's contract (H q_ddot + C + G - Q)_i."""
-
-    coordinate: str
-    joint: str | None
-    subtracted: tuple[str, ...]
-    projection: sp.Expr
-    generalized_force: sp.Expr
-    equation: sp.Expr
-    terms: tuple[tuple[str, sp.Expr], ...] = ()  # (body, its share of the projection)
-
-
-@dataclass(frozen=True)
-class NewtonEuler:
-    """The Newton-Euler derivation of one spec, checked against Lagrange's."""
-
-    method: NEMethod
-    motions: tuple[Motion, ...]
-    bodies: tuple[BodyBalance, ...]
-    reactions: tuple[JointReaction, ...]
-    equations: tuple[CoordinateEquation, ...]
-    equations_of_motion: sp.ImmutableMatrix  # (H q_ddot + C + G - Q)_i, each = 0, Lagrange's order and sign
-    agreement: Check
-    remarks: tuple[str, ...] = ()
-
-    @property
-    def agrees_with_lagrange(self) -> bool:
-        return self.agreement.passed
-
-
-def derive_newton_euler(system: System, derivation: Derivation, kinematics: Kinematics | None = None) -> NewtonEuler:
+def derive_newton_euler(
+    system: System, derivation: Derivation, kinematics: Kinematics | None = None, planar: bool = True
+) -> NewtonEuler:
     """Derive the equations of motion body by body with Newton-Euler, and prove they equal Lagrange's.
 
     Parameters
@@ -168,6 +74,8 @@ def derive_newton_euler(system: System, derivation: Derivation, kinematics: Kine
     system : the validated spec; it must place bodies (not an ``energy:`` spec).
     derivation : Lagrange's derivation of the same system (its inertia and equations of motion).
     kinematics : the frames Lagrange's route built, reused; built again when omitted.
+    planar : also build the scalar form of a planar system (:mod:`tutgen.engine.planar_ne`), which
+        costs about a third more; leave it out when Newton–Euler is derived only for the agreement check.
 
     Returns
     =======
@@ -204,7 +112,11 @@ def derive_newton_euler(system: System, derivation: Derivation, kinematics: Kine
     kin = kinematics or Kinematics(system, {name: bi.com for name, bi in inertia.items()})
     rates = [*(c.qdd for c in system.coordinates), *(c.qd for c in system.coordinates)]
     builder = _Builder(system, kin, inertia, rates)
-    return builder.build(derivation.equations_of_motion)
+    ne = builder.build(derivation.equations_of_motion)
+    if not planar:
+        return ne
+    checkpoint("Newton-Euler: the planar form")
+    return dataclasses.replace(ne, planar=planar_newton_euler(system, kin, ne))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -212,33 +124,6 @@ def derive_newton_euler(system: System, derivation: Derivation, kinematics: Kine
 
 def _dot(a: sp.MatrixBase, b: sp.MatrixBase) -> sp.Expr:
     return (sp.Matrix(a).T * sp.Matrix(b))[0]
-
-
-def _group_rates(expr: sp.Expr, rates: list[sp.Symbol], simplify: Callable[[sp.Expr], sp.Expr]) -> sp.Expr:
-    """Group an expression by monomials in the rates, highest first (the order of ``tidy_rates``),
-    and simplify each coefficient. Splitting the terms directly is much cheaper than building a
-    ``Poly`` over trigonometric coefficients; an expression that is not a polynomial in the rates
-    (a damper divides by a length) is only expanded and its common factors pulled out."""
-    e = sp.expand(expr)
-    if not e.is_polynomial(*rates):
-        return sp.factor_terms(e)
-    groups: dict[tuple[int, ...], list[sp.Expr]] = {}
-    for term in sp.Add.make_args(e):
-        coeff, mono = term.as_independent(*rates, as_Add=False)
-        powers = mono.as_powers_dict()
-        key = tuple(int(powers.get(r, 0)) for r in rates)
-        groups.setdefault(key, []).append(coeff)
-    # a damper between two points divides by the squared distance: cancel such fractions first, as
-    # tidy_rates' Poly over a fraction field does for Lagrange's route
-    rational = any(p.exp.is_negative and p.exp.is_integer and p.base.free_symbols for p in e.atoms(sp.Pow))
-    out = []
-    for key in sorted(groups, reverse=True):
-        mono = sp.Mul(*[r**k for r, k in zip(rates, key, strict=True)])
-        coeff = sp.Add(*groups[key])
-        if rational:
-            coeff = sp.factor_terms(sp.cancel(coeff))
-        out.append(simplify(coeff) * mono)
-    return sp.Add(*out)
 
 
 def _shorter_reduction(e: sp.Expr) -> sp.Expr:
@@ -305,14 +190,14 @@ class _Builder:
     def tidy(self, e: sp.Expr) -> sp.Expr:
         """One equation in the form Lagrange's route prints (as ``tidy_rates``): grouped by q_ddot and
         q_dot monomials, each coefficient tidied."""
-        return _group_rates(e, self.rates, tidy)
+        return group_rates(e, self.rates, tidy)
 
     def light(self, e: sp.Expr) -> sp.Expr:
         """The cheaper tidy of the vectors (accelerations, reactions; large in 3-D): grouped by rate
         monomials, each coefficient as expanded or in its trigonometric reduction (sin^2 -> 1 - cos^2),
         the shorter. The kinematics already writes planar angles as sums (cos(t1 + t2)), so products
         need no search for combined angles; only the equations get the full ``tidy``."""
-        return _group_rates(e, self.rates, _shorter_reduction)
+        return group_rates(e, self.rates, _shorter_reduction)
 
     def vec(self, v: sp.MatrixBase) -> Vec:
         return Vec(sp.Matrix(v).applyfunc(self.light))
@@ -326,7 +211,7 @@ class _Builder:
     def shaped_entry(self, e: sp.Expr, reduce: bool = True) -> sp.Expr:
         if _size(e, _EXPAND_NODES) > _EXPAND_NODES:
             return e
-        return self.light(e) if reduce else _group_rates(e, self.rates, lambda c: c)
+        return self.light(e) if reduce else group_rates(e, self.rates, lambda c: c)
 
     # -- the route -------------------------------------------------------------------------
     def method(self) -> NEMethod:
@@ -542,7 +427,7 @@ class _Builder:
         checkpoint("Newton-Euler: agreement with Lagrange")
         agreement = _agreement(self.system, eom, lagrange_eom)
         order = [b.name for b in self.system.bodies]
-        return NewtonEuler(
+        ne = NewtonEuler(
             method=method,
             motions=tuple(motions[b] for b in order if b in motions and not self.kin.is_static(b)),
             bodies=bodies,
@@ -552,6 +437,7 @@ class _Builder:
             agreement=agreement,
             remarks=tuple(self.remarks),
         )
+        return ne
 
     def balances_joints(
         self, joints: list[Joint], motions: dict[str, Motion], loads: dict[str, list[AppliedLoad]]

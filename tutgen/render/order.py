@@ -101,6 +101,9 @@ def _collected(terms: list[sp.Expr], coordinate_symbols: set[sp.Basic], rates: l
     out: list[Term] = []
     for rest, coeffs in sorted(groups.items(), key=lambda kv: _rate_key(kv[0], order_of)):
         sign, body = positive_lead(sp.factor_terms(sp.Add(*coeffs)))
+        if rest == 1 and isinstance(body, sp.Add):  # terms free of the coordinates share nothing: one by one
+            out += [positive_lead(c) for c in coeffs]  # (a sum's sign taken out would need a bracket)
+            continue
         out.append((sign, _times(body, rest)))
     return out
 

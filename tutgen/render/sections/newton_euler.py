@@ -7,9 +7,28 @@ from typing import Any
 
 import sympy as sp
 
-from tutgen.engine.newton_euler import PROJECTION_REMARK, NEMethod, NewtonEuler
-from tutgen.model.system import Ask, Coordinate
-from tutgen.render.blocks import SolutionContext, display, math, para, section, strong, tex_name, text
+from tutgen.engine.ne_types import (
+    PROJECTION_REMARK,
+    EliminationStep,
+    ForceKind,
+    NEMethod,
+    NewtonEuler,
+    PlanarBalance,
+    PlanarForce,
+    PlanarNewtonEuler,
+)
+from tutgen.model.system import Ask, Coordinate, JointKind
+from tutgen.render.blocks import (
+    SolutionContext,
+    display,
+    math,
+    para,
+    section,
+    stacked,
+    strong,
+    tex_name,
+    text,
+)
 from tutgen.render.printer import TexPrinter
 from tutgen.render.wording import engine_parts
 
@@ -18,6 +37,8 @@ def newton_euler(c: SolutionContext) -> dict[str, Any] | None:
     d, s = c.d, c.s
     if d.newton_euler is None or Ask.EQUATIONS_OF_MOTION not in s.ask:
         return None
+    if d.newton_euler.planar is not None:
+        return planar_section(d.newton_euler, d.newton_euler.planar, s.coordinates, c.tex, c.num)
     return newton_euler_section(d.newton_euler, s.coordinates, c.tex, c.num)
 
 
@@ -86,37 +107,47 @@ def newton_euler_section(
             )
         )
         m = motions.get(b.body)
-        if m is not None:
-            blocks.append(
-                display(
-                    f"\\omega_{{{name}}} = {tex(num(m.angular_velocity))},\\quad "
-                    f"\\alpha_{{{name}}} = {tex(num(m.angular_acceleration))},\\quad "
-                    f"\\mathbf a_{{G,{name}}} = {tex(num(m.acceleration))}"
+        if m is not None:  # each link's motion stated once; zero vectors and components left out
+            motion = [
+                f"{sym} = {_ijk(tex, num(v))}"
+                for sym, v in (
+                    (f"\\omega_{{{name}}}", m.angular_velocity),
+                    (f"\\alpha_{{{name}}}", m.angular_acceleration),
+                    (f"\\mathbf a_{{G,{name}}}", m.acceleration),
                 )
-            )
-        terms = [f"\\mathbf F_{{{_tex_label(ld.name)}}} = {tex(num(ld.force))}" for ld in b.loads if _nonzero(ld.force)]
+                if _nonzero(num(v))
+            ]
+            if motion:
+                blocks.append(display(",\\quad ".join(motion)))
+        terms = [
+            f"\\mathbf F_{{{_tex_label(ld.name)}}} = {_ijk(tex, num(ld.force))}" for ld in b.loads if _nonzero(ld.force)
+        ]
         terms += [
-            f"\\boldsymbol\\tau_{{{_tex_label(ld.name)}}} = {tex(num(ld.torque))}"
+            f"\\boldsymbol\\tau_{{{_tex_label(ld.name)}}} = {_ijk(tex, num(ld.torque))}"
             for ld in b.loads
             if _nonzero(ld.torque)
         ]
-        terms.append(f"-m\\mathbf a_G = {tex(num(b.inertial_force))}")
+        if m is not None:  # a_G is stated above
+            terms.append(f"-m\\mathbf a_G = -{tex(num(b.mass))}\\,\\mathbf a_{{G,{name}}}")
+        else:
+            terms.append(f"-m\\mathbf a_G = {_ijk(tex, num(b.inertial_force))}")
         if _nonzero(b.inertial_moment):
-            terms.append(f"-(I_G\\alpha + \\omega\\times I_G\\omega) = {tex(num(b.inertial_moment))}")
+            terms.append(f"-(I_G\\alpha + \\omega\\times I_G\\omega) = {_ijk(tex, num(b.inertial_moment))}")
         blocks.append(display(",\\quad ".join(terms)))
         if b.joint_in is None:  # no named reactions: what is left is balanced by the constraint forces
             blocks.append(
                 display(
-                    f"{{\\textstyle\\sum}} \\mathbf F - m\\mathbf a_G = {tex(num(b.force_balance))} = -\\mathbf F_c,"
+                    f"{{\\textstyle\\sum}} \\mathbf F - m\\mathbf a_G = "
+                    f"{_ijk(tex, num(b.force_balance))} = -\\mathbf F_c,"
                     f"\\quad {{\\textstyle\\sum}} \\mathbf M_G - (I_G\\alpha + \\omega\\times I_G\\omega) = "
-                    f"{tex(num(b.moment_balance))} = -\\mathbf M_c"
+                    f"{_ijk(tex, num(b.moment_balance))} = -\\mathbf M_c"
                 )
             )
         else:
             blocks.append(
                 display(
-                    f"{{\\textstyle\\sum}} \\mathbf F = {tex(num(b.force_balance))} = \\mathbf 0,\\quad "
-                    f"{{\\textstyle\\sum}} \\mathbf M = {tex(num(b.moment_balance))} = \\mathbf 0"
+                    f"{{\\textstyle\\sum}} \\mathbf F = {_ijk(tex, num(b.force_balance))} = \\mathbf 0,\\quad "
+                    f"{{\\textstyle\\sum}} \\mathbf M = {_ijk(tex, num(b.moment_balance))} = \\mathbf 0"
                 )
             )
     if ne.reactions:
@@ -124,7 +155,10 @@ def newton_euler_section(
         for r in ne.reactions:
             j = tex_name(r.joint)
             blocks.append(
-                display(f"\\mathbf R_{{{j}}} = {tex(num(r.force))},\\quad \\mathbf N_{{{j}}} = {tex(num(r.moment))}")
+                display(
+                    f"\\mathbf R_{{{j}}} = {_ijk(tex, num(r.force))},\\quad "
+                    f"\\mathbf N_{{{j}}} = {_ijk(tex, num(r.moment))}"
+                )
             )
     blocks.append(para(text("The equation of each coordinate:")))
     for e in ne.equations:
@@ -146,3 +180,253 @@ def newton_euler_section(
     if ne.agrees_with_lagrange:
         blocks.append(para(engine_parts(ne.agreement.detail + ".", tex)))
     return sec
+
+
+# -- planar systems: Newton–Euler as it is taught ---------------------------------------------
+
+_PLANAR_INTRO = (
+    "Newton–Euler in the plane, with D'Alembert's principle: each body is in equilibrium under every force "
+    "on it and its inertial force $-m\\mathbf a_G$ (at $G$) and couple $-I_G\\alpha$. "
+    "$\\mathbf R_j$ is the force the parent exerts on the child at joint $j$ (the parent receives "
+    "$-\\mathbf R_j$); a slide exerts a force $N_j$ normal to it and a couple $M_j$. "
+    "Moments are about the body's joint, counter-clockwise positive; $\\mathbf i$, $\\mathbf j$ are the "
+    "$x$ and $y$ directions."
+)
+
+
+def _name_unknowns(planar: PlanarNewtonEuler, tex: TexPrinter) -> None:
+    """R[pivot].x -> R_{pivot,x}; R[slide].n -> N_{slide}; M[slide] -> M_{slide}."""
+    for r in planar.reactions:
+        j = tex_name(r.joint)
+        for sym in r.unknowns:
+            name = sym.name
+            if name.startswith("M["):
+                tex.names[sym] = f"M_{{{j}}}"
+            elif name.endswith(".n"):
+                tex.names[sym] = f"N_{{{j}}}"
+            else:
+                tex.names[sym] = f"R_{{{j},{name[-1]}}}"
+
+
+def _ij(tex: TexPrinter, fx: sp.Expr, fy: sp.Expr) -> str:
+    """A plane vector as a teacher writes it: -k x i + F j, zero components left out."""
+    return _components(tex, ((fx, "\\mathbf i"), (fy, "\\mathbf j")))
+
+
+def _ijk(tex: TexPrinter, v: sp.MatrixBase) -> str:
+    """A vector of world components as x i + y j + z k, zero components left out."""
+    return _components(tex, tuple(zip(v, ("\\mathbf i", "\\mathbf j", "\\mathbf k"), strict=True)))
+
+
+def _components(tex: TexPrinter, pairs: tuple[tuple[sp.Expr, str], ...]) -> str:
+    pieces = []
+    for c, unit in pairs:
+        if c == 0:
+            continue
+        if c == 1 or c == -1:
+            pieces.append(("-" if c == -1 else "") + unit)
+            continue
+        s = tex(c)
+        if isinstance(c, sp.Add):
+            s = f"\\left({s}\\right)"
+        pieces.append(f"{s} {unit}")  # no thin space: the line breaker splits a term at a comma
+    if not pieces:
+        return "\\mathbf 0"
+    out = pieces[0]
+    for p in pieces[1:]:
+        out += (" " if p.startswith("-") else " + ") + p
+    return out
+
+
+def _at(tex: TexPrinter, point: tuple[sp.Expr, sp.Expr]) -> str:
+    return f"\\quad\\text{{at }}\\left({tex(point[0])},\\ {tex(point[1])}\\right)"
+
+
+def _label(f: PlanarForce, coords: dict[str, str]) -> tuple[str, str]:
+    """The symbols a force and its couple are named by on a free-body diagram (a generalized force by
+    its coordinate: Q_theta)."""
+    src = "\\text{" + (f.source or "").replace("_", "\\_") + "}"
+    if f.kind is ForceKind.GRAVITY:
+        return "\\mathbf W", ""
+    if f.kind is ForceKind.INERTIAL_FORCE:
+        return "\\mathbf F_{\\text{inertial}}", ""
+    if f.kind is ForceKind.INERTIAL_COUPLE:
+        return "", "M_{\\text{inertial}} = -I_G\\alpha"
+    if f.kind in (ForceKind.REACTION, ForceKind.REACTION_ON_PARENT):
+        j = tex_name(f.source or "")
+        sign = "" if f.kind is ForceKind.REACTION else "-"
+        return f"{sign}\\mathbf R_{{{j}}}", f"{sign}M_{{{j}}}"
+    if f.kind in (ForceKind.DRIVE, ForceKind.DRIVE_REACTION):
+        sign = "" if f.kind is ForceKind.DRIVE else "-"
+        q = coords.get(f.source or "", src)
+        return f"{sign}\\mathbf Q_{{{q}}}", f"{sign}Q_{{{q}}}"
+    if f.kind is ForceKind.ROTOR:
+        return "\\mathbf F_{\\text{rotor}}", "\\tau_{\\text{rotor}}"
+    sign = "-" if f.kind is ForceKind.LOAD_REACTION else ""
+    return f"{sign}\\mathbf F_{{{src}}}", f"{sign}\\tau_{{{src}}}"
+
+
+_WORDS = {
+    ForceKind.GRAVITY: "gravity",
+    ForceKind.LOAD: "applied",
+    ForceKind.LOAD_REACTION: "reaction of an applied load",
+    ForceKind.SPRING: "spring",
+    ForceKind.DAMPER: "damper",
+    ForceKind.DRIVE: "generalized force at its joint",
+    ForceKind.DRIVE_REACTION: "reaction of a generalized force",
+    ForceKind.ROTOR: "the geared rotor's reflected inertia",
+    ForceKind.REACTION: "joint reaction, on the child",
+    ForceKind.REACTION_ON_PARENT: "joint reaction, on the parent",
+    ForceKind.INERTIAL_FORCE: "D'Alembert",
+    ForceKind.INERTIAL_COUPLE: "D'Alembert",
+}
+
+
+def _force_lines(b: PlanarBalance, mass: str, coords: dict[str, str], tex: TexPrinter, num: Any) -> list[str]:
+    lines = []
+    for f in b.forces:
+        force_name, couple_name = _label(f, coords)
+        words = f"\\quad\\text{{({_WORDS[f.kind]})}}"
+        fx, fy = num(f.force[0]), num(f.force[1])
+        if f.kind is ForceKind.INERTIAL_FORCE:  # a_G is stated above
+            lines.append(f"{force_name} = -{mass}\\mathbf a_G\\quad\\text{{at }}G{words}")
+            continue
+        t = num(f.torque)
+        if f.kind in (ForceKind.REACTION, ForceKind.REACTION_ON_PARENT) and t != 0:
+            # a reaction couple is its own unknown (M_j): named beside the force, not "M_j = M_j"
+            where = _at(tex, (num(f.point[0]), num(f.point[1])))
+            couple = f"\\ \\text{{and the couple }}{tex(t)}"
+            lines.append(f"{force_name} = {_ij(tex, fx, fy)}{where}{couple}{words}")
+            continue
+        if fx != 0 or fy != 0:
+            at_g = f.kind is ForceKind.GRAVITY
+            where = "\\quad\\text{at }G" if at_g else _at(tex, (num(f.point[0]), num(f.point[1])))
+            lines.append(f"{force_name} = {_ij(tex, fx, fy)}{where}{words}")
+        if t != 0:
+            lines.append(f"{couple_name} = {tex(t)}{words}")
+    return lines
+
+
+def _balance_lhs(kind: str, b: str, about: str, axis: str) -> str:
+    return {
+        "moment": f"\\textstyle\\sum M_{{{about}}}^{{({b})}}",
+        "force": f"\\textstyle\\sum F_{{{axis}}}^{{({b})}}",
+    }[kind]
+
+
+def _axis_name(tex: TexPrinter, axis: tuple[sp.Expr, sp.Expr]) -> str:
+    if axis == (1, 0):
+        return "x"
+    if axis == (0, 1):
+        return "y"
+    return f"\\parallel {_ij(tex, *axis)}"
+
+
+def planar_section(
+    ne: NewtonEuler, planar: PlanarNewtonEuler, coordinates: tuple[Coordinate, ...], tex: TexPrinter, num: Any
+) -> dict[str, Any]:
+    """Per body: its motion, its free-body diagram and its three balances; then the equations of motion,
+    the reactions eliminated one coordinate at a time; then the reactions."""
+    _name_unknowns(planar, tex)
+    sec = section("Newton–Euler", _PLANAR_INTRO)
+    blocks = sec["blocks"]
+    masses = {b.body: b.mass for b in ne.bodies}
+    motions = {m.body: m for m in ne.motions}
+    axes = {r.joint: (r.axis[0], r.axis[1]) for r in ne.reactions}
+    kinds = {r.joint: r.kind for r in ne.reactions}
+    for b in planar.balances:
+        about = tex_name(b.joint)
+        mass = tex(num(masses[b.body])) if masses[b.body] != 0 else "m"
+        where = f"the pivot of joint '{b.joint}'" if kinds[b.joint] is JointKind.REVOLUTE else f"joint '{b.joint}'"
+        blocks.append(
+            para(
+                strong(b.body),
+                text(f": the free body, with moments about {where} at "),
+                math(f"\\left({tex(num(b.point[0]))},\\ {tex(num(b.point[1]))}\\right)"),
+                text("."),
+            )
+        )
+        m = motions.get(b.body)
+        if m is not None and (m.acceleration[0] != 0 or m.acceleration[1] != 0 or m.angular_acceleration[2] != 0):
+            motion = [f"\\mathbf a_{{G}} = {_ij(tex, num(m.acceleration[0]), num(m.acceleration[1]))}"]
+            if m.angular_acceleration[2] != 0:
+                motion.append(f"\\alpha = {tex(num(m.angular_acceleration[2]))}")
+            blocks.append(display(",\\quad ".join(motion)))
+        coords = {c.name: c.latex for c in coordinates}
+        blocks.append(stacked(_force_lines(b, mass, coords, tex, num)))
+        blocks.append(
+            stacked(
+                [
+                    tex.equation("\\textstyle\\sum F_x", num(b.sum_fx), "0"),
+                    tex.equation("\\textstyle\\sum F_y", num(b.sum_fy), "0"),
+                    tex.equation(f"\\textstyle\\sum M_{{{about}}}", num(b.sum_m), "0"),
+                ]
+            )
+        )
+    blocks.append(
+        para(
+            text(
+                "The reactions eliminated, one coordinate at a time from the tips inward: the balances of the "
+                "bodies that a change of that coordinate alone moves are added, so that the reactions between "
+                "them cancel and the joint's own reaction does no work."
+            )
+        )
+    )
+    for st in planar.steps:
+        blocks += _step_blocks(st, axes, kinds, coordinates, tex, num)
+    blocks.append(para(text("The reactions, solved last (tips first, each from its child's balances):")))
+    for r in reversed(planar.reactions):  # the tips first, as they are solved
+        lines = [f"{tex(u)} = {tex(num(v))}" for u, v in zip(r.unknowns, r.values, strict=True)]
+        blocks.append(stacked(lines))
+    # the recursive route's remarks (what enters as Q_i, what is subtracted behind an absolute angle)
+    # describe its own form; here every force is on its free body and the steps say what is added
+    if ne.agrees_with_lagrange:
+        blocks.append(para(engine_parts(ne.agreement.detail + ".", tex)))
+    return sec
+
+
+def _step_blocks(
+    st: EliminationStep,
+    axes: dict[str, tuple[sp.Expr, sp.Expr]],
+    kinds: dict[str, JointKind],
+    coordinates: tuple[Coordinate, ...],
+    tex: TexPrinter,
+    num: Any,
+) -> list[dict[str, Any]]:
+    coord = next(c for c in coordinates if c.name == st.coordinate)
+    j = tex_name(st.joint)
+    bodies = [c.body for c in st.contributions]
+    revolute = kinds[st.joint] is JointKind.REVOLUTE
+    if revolute:
+        what = f"the moments about the pivot of joint '{st.joint}'"
+    else:
+        what = "the forces along the slide of joint '" + st.joint + "'"
+    intro = [strong("Equation of"), text(" "), math(coord.latex), text(f": {what}, of "), text(", ".join(bodies))]
+    if st.eliminated:
+        intro += [text("; "), math(",\\ ".join(tex(u) for u in st.eliminated)), text(" cancel")]
+    intro.append(text("."))
+    carried = [c for c in st.contributions if c.kind == "force_moment"]
+    if carried:
+        names = ", ".join(c.body for c in carried)
+        vias = ", ".join(sorted({f"'{c.via}'" for c in carried}))
+        intro.append(
+            text(
+                f" The angle at joint {vias} is absolute, so {names} does not turn when only this angle changes: "
+                "it moves with that joint's point, and only the moment of its forces there counts."
+            )
+        )
+    lines = []
+    axis = _axis_name(tex, axes[st.joint])
+    for c in st.contributions:
+        b = tex_name(c.body)
+        if c.kind == "force_moment":
+            via = tex_name(c.via or "")
+            lhs = f"(\\mathbf r_{{{via}}} - \\mathbf r_{{{j}}})\\times{{\\textstyle\\sum}}\\mathbf F^{{({b})}}"
+        else:
+            lhs = _balance_lhs(c.kind, b, j, axis)
+        lines.append(tex.equation(lhs, num(c.expr)))
+    if len(st.contributions) > 1:
+        lines.append(tex.equation("\\text{sum}", num(st.result), "0"))
+    else:
+        lines[-1] += " = 0"
+    return [para(*intro), stacked(lines)]
