@@ -15,7 +15,9 @@ def build_energy(ctx: Context, bodies: set[str]) -> tuple[sp.Expr | None, sp.Exp
     spec = ctx.doc.energy
     # keys set aside for shape errors (or unknown ones, perhaps a misspelt `bodies`) may be what
     # is missing here: guess nothing about them
-    unsure = bool(ctx.dropped_keys - {"tutgen", "title", "statement", "gravity", "ask", "significant_figures"})
+    unsure = bool(
+        ctx.dropped_keys - {"tutgen", "title", "statement", "gravity", "ask", "methods", "significant_figures"}
+    )
     has_bodies = bool(ctx.doc.bodies or ctx.doc.joints or bodies or ctx.doc.arm)
     has_bodies |= bool(ctx.dropped_names("joints"))
     if spec is None:
