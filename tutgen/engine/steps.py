@@ -205,6 +205,9 @@ def plan_steps(
     depends = _depends(system, methods, large)
     wanted: set[StepKind] = set()
     todo = [kind for a in sorted(system.ask) for kind in _ASKED[a]]
+    if Method.LAGRANGE not in methods and _newton_euler_applies(system) and not large:
+        # Lagrange's equations term by term are Lagrange's working: shown only when it is presented
+        todo = [kind for kind in todo if kind is not StepKind.LAGRANGE_EQUATIONS]
     if Method.NEWTON_EULER in methods and _newton_euler_applies(system) and not large:
         # Newton-Euler presented: it is how the equations of motion are found
         if Ask.EQUATIONS_OF_MOTION in system.ask or Ask.LAGRANGE_EQUATIONS in system.ask:
