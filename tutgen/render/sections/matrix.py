@@ -132,17 +132,20 @@ def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
     for e in step.equations if step is not None else ():
         a, b = (int(x) - 1 for x in e.lhs.expr.indices)
         derivative[a, b, coords[e.lhs.variables[0]]] = e.rhs
-    blocks.append(
-        para(
-            prose(
-                "The entries of $H$ that depend on the coordinates, differentiated (all other "
-                "$\\partial H_{ij}/\\partial q_k$ are zero; $H_{ji} = H_{ij}$):"
+    # a large serial arm's route has its symbols from the recursion, without the table of dH/dq
+    defined = bool(derivative)
+    if defined:
+        blocks.append(
+            para(
+                prose(
+                    "The entries of $H$ that depend on the coordinates, differentiated (all other "
+                    "$\\partial H_{ij}/\\partial q_k$ are zero; $H_{ji} = H_{ij}$):"
+                )
             )
         )
-    )
-    blocks.append(
-        display(",\\quad ".join(f"{_partial(a, b, k, d)} = {tex(num(v))}" for (a, b, k), v in derivative.items()))
-    )
+        blocks.append(
+            display(",\\quad ".join(f"{_partial(a, b, k, d)} = {tex(num(v))}" for (a, b, k), v in derivative.items()))
+        )
 
     def dh(a: int, b: int, k: int) -> sp.Expr:
         return derivative.get((min(a, b), max(a, b), k), sp.Integer(0))
@@ -150,19 +153,28 @@ def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
     lines = []
     for (i, j, k), v in nonzero:
         first, second = dh(i, j, k), dh(j, k, i)
-        line = f"h_{{{i + 1}{j + 1}{k + 1}}} = {_partial(i, j, k, d)} - \\tfrac12 {_partial(j, k, i, d)}"
+        line = f"h_{{{i + 1}{j + 1}{k + 1}}}"
+        if defined:
+            line += f" = {_partial(i, j, k, d)} - \\tfrac12 {_partial(j, k, i, d)}"
         if first != 0 and second != 0:  # both terms: their values, before the sum
             line += f" = {tex(num(first))} - \\tfrac12\\left({tex(num(second))}\\right)"
         lines.append(f"{line} = {tex(num(v))}")
-    blocks.append(para(prose("Each nonzero $h_{ijk}$ from its definition (all other $h_{ijk}$ are zero):")))
+    from_definition = " from its definition" if defined else ""
+    blocks.append(para(prose(f"Each nonzero $h_{{ijk}}${from_definition} (all other $h_{{ijk}}$ are zero):")))
     blocks.append(stacked(lines))
     first_kind = [(k, v) for k, v in sorted(d.christoffel_first_kind.items()) if v != 0]
-    blocks.append(para(prose("Each nonzero $c_{ijk}$ from its definition ($c_{ikj} = c_{ijk}$):")))
+    blocks.append(para(prose(f"Each nonzero $c_{{ijk}}${from_definition} ($c_{{ikj}} = c_{{ijk}}$):")))
     blocks.append(
         stacked(
             [
-                f"c_{{{i + 1}{j + 1}{k + 1}}} = \\tfrac12\\left({_partial(i, j, k, d)} + {_partial(i, k, j, d)} - "
-                f"{_partial(j, k, i, d)}\\right) = {tex(num(v))}"
+                f"c_{{{i + 1}{j + 1}{k + 1}}} = "
+                + (
+                    f"\\tfrac12\\left({_partial(i, j, k, d)} + {_partial(i, k, j, d)} - "
+                    f"{_partial(j, k, i, d)}\\right) = "
+                    if defined
+                    else ""
+                )
+                + tex(num(v))
                 for (i, j, k), v in first_kind
                 if j <= k
             ]
