@@ -132,7 +132,7 @@ def _depends(system: System, methods: tuple[Method, ...], large: bool) -> dict[S
     K = StepKind
     moves = system.kinetic_energy is None and not large  # bodies placed by joints or positions
     t_needs = [K.KINEMATICS] if moves else []
-    if system.kinetic_energy is None and _has_rotational_inertia(system):
+    if moves and _has_rotational_inertia(system):  # a large arm's T is 1/2 q_dot^T H q_dot, from the recursion
         t_needs.insert(0, K.INERTIA)
     u_needs = [K.KINEMATICS] if moves and system.gravity is not None else []
     l_needs = [K.KINETIC_ENERGY] + ([K.POTENTIAL_ENERGY] if _has_potential(system) else [])
