@@ -7,9 +7,7 @@ tutorial has a typo, tutgen must give the corrected value and must NOT give the 
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from functools import cache
 from typing import Any
 
 import pytest
@@ -17,24 +15,14 @@ import sympy as sp
 
 from tests.conftest import SPECS, solved
 from tests.seed import ANSWERS, BODY_OF, SPEC_OF, problems
-from tutgen.engine.pipeline import derive
 from tutgen.engine.tidy import is_zero
-from tutgen.model.system import Ask
-from tutgen.render.jsonout import derivation_to_json
 from tutgen.spec.expr import parse_expression
 
 pytestmark = pytest.mark.skipif(not ANSWERS.exists(), reason=f"the seed answer key is not at {ANSWERS}")
 
 
-@cache
 def result(pid: int) -> tuple[Any, dict[str, Any]]:
-    """The spec and its JSON, with everything derived: the answer key has every result of a problem,
-    also those its `ask` leaves out of the worked solution (p05 asks for the equations and the matrix
-    form; the key also has its Christoffel symbols)."""
     system, _, doc = solved(str(SPECS / "tutorial-1" / SPEC_OF[pid]))
-    everything = frozenset(Ask) if system.bodies else frozenset(Ask) - {Ask.INERTIA}
-    if system.coordinates and system.ask != everything:
-        return system, derivation_to_json(derive(dataclasses.replace(system, ask=everything)))
     return system, doc
 
 
