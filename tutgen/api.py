@@ -130,7 +130,7 @@ def _template_frame(err: BaseException, template_dir: Path) -> Location:
 def solve_specs(
     paths: list[Path],
     fmt: str,
-    method: str = "both",
+    method: str | None = None,
     template_dir: Path | None = None,
     timeout: float | None = None,
 ) -> list[str | bytes]:

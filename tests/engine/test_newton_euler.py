@@ -29,7 +29,7 @@ from tutgen.engine.pipeline import derive
 from tutgen.engine.serial import is_large_serial_chain
 from tutgen.engine.tidy import is_zero
 from tutgen.errors import EXIT_METHODS_DISAGREE, AgreementError, DerivationError
-from tutgen.model.system import JointKind
+from tutgen.model.system import Ask, JointKind
 from tutgen.render.markdown import render_markdown
 from tutgen.spec.expr import parse_expression
 
@@ -194,7 +194,9 @@ def test_newton_euler_absolute_angle_subtracts_the_moment_behind_it() -> None:
     ],
 )
 def test_newton_euler_route(spec: str, method: NEMethod) -> None:
-    _, d, _ = solved(str(TUTORIAL / f"{spec}.yaml"))
+    system, d, _ = solved(str(TUTORIAL / f"{spec}.yaml"))
+    if d.newton_euler is None:  # p02 asks for T only: no equations of motion, no Newton-Euler
+        d = derive(dataclasses.replace(system, ask=frozenset(Ask)))
     ne = d.newton_euler
     assert ne.method is method
     if method is NEMethod.PROJECTION:
@@ -326,12 +328,13 @@ def test_newton_euler_branching_tree_with_absolute_branch() -> None:
 # ---------------------------------------------------------------------------------------------
 
 
-def test_derive_method_lagrange_skips_newton_euler() -> None:
+def test_derive_method_lagrange_presents_lagrange_and_still_checks_newton_euler() -> None:
     system, _, _ = solved(str(P03))
     d = derive(system, method="lagrange")
-    assert d.newton_euler is None
-    assert all(c.name != "newton_euler_equals_lagrange" for c in d.checks)
-    assert derive(system, method="newton-euler").newton_euler is not None
+    assert d.newton_euler is not None and not d.has_step("newton_euler")
+    assert [c.name for c in d.checks].count("newton_euler_equals_lagrange") == 1
+    ne = derive(system, method="newton-euler")
+    assert ne.has_step("newton_euler") and not ne.has_step("lagrange_equations")
 
 
 def test_derive_rejects_an_unknown_method() -> None:
@@ -378,7 +381,7 @@ def test_newton_euler_json_contract() -> None:
 
 @pytest.mark.parametrize("spec", ["p04-rp-arm", "p07-belt-driven-arm", "p08-spatial-rr"])
 def test_newton_euler_markdown_renders(spec: str) -> None:
-    _, d, _ = solved(str(TUTORIAL / f"{spec}.yaml"))
+    d = derive(solved(str(TUTORIAL / f"{spec}.yaml"))[0], "both")  # their specs present Lagrange's alone
     text = render_markdown(d)
     assert "Newton–Euler" in text and "The Newton–Euler equations agree with Lagrange's." in text
     assert ("F_c" in text) == (d.newton_euler.method is NEMethod.PROJECTION)

@@ -69,13 +69,15 @@ def sheet(
         typer.Option("--progress/--no-progress", help="A progress bar on stderr (default: when it is a terminal)."),
     ] = None,
     method: Annotated[
-        SheetMethod,
+        SheetMethod | None,
         typer.Option(
             "--method",
             "-m",
-            help="The worked solutions' route: Lagrange (the tutorial's), or both with Newton-Euler (slower).",
+            help="The formulations the worked solutions present, for every problem: Lagrange, Newton-Euler, "
+            "or both (default: each problem spec's `methods:`, Lagrange unless it says otherwise).",
+            show_default=False,
         ),
-    ] = SheetMethod.lagrange,
+    ] = None,
     force: Annotated[bool, typer.Option("--force", help="Overwrite existing output files.")] = False,
     timeout: Annotated[
         float,
@@ -113,7 +115,7 @@ def sheet(
                 workers=workers,
                 scheduler=scheduler,
                 timeout=timeout,
-                method=method.value,
+                method=method.value if method is not None else None,
                 on_done=advance,
             )
     echo_error(report)

@@ -42,14 +42,17 @@ def solve(
     ] = None,
     force: Annotated[bool, typer.Option("--force", help="Overwrite existing output files.")] = False,
     method: Annotated[
-        Method,
+        Method | None,
         typer.Option(
             "--method",
             "-m",
-            help="Lagrange, Newton-Euler, or both with an agreement check (Newton-Euler needs bodies; "
-            "Lagrange always runs, as the reference Newton-Euler is checked against).",
+            help="The formulations to present: Lagrange, Newton-Euler, or both (default: the spec's "
+            "`methods:`, Lagrange unless it says otherwise). Lagrange's route always runs, and Newton-Euler "
+            "is derived for its agreement check whenever the spec has bodies; its working is printed only "
+            "when presented.",
+            show_default=False,
         ),
-    ] = Method.both,
+    ] = None,
     timeout: Annotated[
         float,
         typer.Option(
@@ -86,7 +89,8 @@ def solve(
         raise UsageError("several specs need an output directory: add -o DIR")
     if output is not None:
         plan_outputs(specs, output, format.value, force=force)  # refuse early, before the slow part
-    texts = solve_specs(specs, format.value, method.value, template_dir, timeout=timeout)
+    chosen = method.value if method is not None else None
+    texts = solve_specs(specs, format.value, chosen, template_dir, timeout=timeout)
     if output is None:
         assert isinstance(texts[0], str)
         stdout_write(texts[0])

@@ -14,7 +14,8 @@ import sympy as sp
 
 from tutgen.engine.inertia import BodyInertia, Principal
 from tutgen.engine.kinematics import BodyKinematics
-from tutgen.model.system import System
+from tutgen.engine.steps import Step
+from tutgen.model.system import Method, System
 
 if TYPE_CHECKING:  # newton_euler.py imports this module
     from tutgen.engine.newton_euler import NewtonEuler
@@ -82,10 +83,18 @@ class Derivation:
     remarks: tuple[str, ...] = ()
     checks: tuple[Check, ...] = ()
     newton_euler: NewtonEuler | None = None  # the same equations body by body, checked against Lagrange's
-    method: str = "both"  # what the reader asked to see: "both", "lagrange" or "newton-euler"
+    method: str = "lagrange"  # what the reader sees: "both", "lagrange" or "newton-euler" (as `methods`)
+    methods: tuple[Method, ...] = (Method.LAGRANGE,)  # the formulations presented, in order
+    # the worked solution's steps in teaching order (tutgen.engine.steps): what `ask` and `methods` call
+    # for, with what they depend on; the renderers print a section only if its step is here
+    steps: tuple[Step, ...] = ()
     # serial arms: the same H, C q_dot and G as a straight-line program of named intermediates
     # (tutgen.engine.recursive.NestedDynamics), printed instead of entries too long to read
     program: NestedDynamics | None = None
+
+    def has_step(self, kind: str) -> bool:
+        """Whether the worked solution has a step of this kind (a :class:`~tutgen.engine.steps.StepKind`)."""
+        return any(step.kind == kind for step in self.steps)
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

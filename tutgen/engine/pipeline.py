@@ -11,7 +11,10 @@
    (:mod:`~tutgen.engine.matrix_form`);
 7. checks: the matrix form against Lagrange's equations, H_dot - 2 C skew, H positive semi-definite,
    dimensions (:mod:`~tutgen.engine.checks`), and the remarks (:mod:`~tutgen.engine.remarks`);
-8. Newton-Euler, checked against Lagrange (:mod:`~tutgen.engine.newton_euler`).
+8. Newton-Euler, checked against Lagrange (:mod:`~tutgen.engine.newton_euler`), whenever the equations of
+   motion are derived and the system has bodies; presented only when ``methods`` asks for it;
+9. the step records (:mod:`~tutgen.engine.steps`): which steps ``ask`` and ``methods`` call for, in
+   teaching order; the checks about steps not derived are left out.
 
 and chooses the route: a serial arm of ``LARGE`` (4) or more coordinates
 (:func:`~tutgen.engine.serial.is_large_serial_chain`) takes the route of :mod:`~tutgen.engine.serial`
@@ -36,22 +39,49 @@ from tutgen.engine.newton_euler import derive_newton_euler
 from tutgen.engine.recursive import nested_dynamics
 from tutgen.engine.remarks import REMARK_CONSTANT_MASS_MATRIX, degeneracy_remarks, rotor_remark, zero_remarks
 from tutgen.engine.serial import REMARK_FAST_PATH, is_large_serial_chain, serial_checks, serial_dynamics
+from tutgen.engine.steps import StepKind, plan_steps, record_steps, reported_checks
 from tutgen.engine.tidy import tidy
 from tutgen.errors import DerivationError, DerivationTimeout
 from tutgen.limits import DEFAULT_TIMEOUT, checkpoint, deadline, stage
-from tutgen.model.system import System
+from tutgen.model.system import Method, System
 
-__all__ = ["METHODS", "derive", "derive_with_deadline"]
+__all__ = ["METHODS", "derive", "derive_with_deadline", "presented_methods"]
 
+#: the values of ``--method``: which formulations to present, overriding the spec's ``methods:``
 METHODS = ("both", "lagrange", "newton-euler")
+_OVERRIDES = {
+    "both": (Method.LAGRANGE, Method.NEWTON_EULER),
+    "lagrange": (Method.LAGRANGE,),
+    "newton-euler": (Method.NEWTON_EULER,),
+}
 
 
-def derive(system: System, method: str = "both") -> Derivation:
+def presented_methods(system: System, method: str | None = None) -> tuple[Method, ...]:
+    """The formulations a worked solution presents: ``method`` ("both", "lagrange", "newton-euler")
+    when given, else the spec's ``methods:`` (default Lagrange). Newton-Euler frees bodies, so a spec
+    that gives its energy presents Lagrange's (the spec itself may not ask for Newton-Euler then: a
+    spec error; an override on the command line falls back to Lagrange)."""
+    if method is not None and method not in METHODS:
+        raise ValueError(f"method must be one of {', '.join(METHODS)}, not {method!r}")
+    methods = system.methods if method is None else _OVERRIDES[method]
+    if system.kinetic_energy is not None or not system.bodies:
+        methods = tuple(m for m in methods if m is not Method.NEWTON_EULER) or (Method.LAGRANGE,)
+    return methods
+
+
+def _method_name(methods: tuple[Method, ...]) -> str:
+    if len(methods) > 1:
+        return "both"
+    return "newton-euler" if methods[0] is Method.NEWTON_EULER else "lagrange"
+
+
+def derive(system: System, method: str | None = None) -> Derivation:
     """Derive everything a spec asks for, in teaching order.
 
-    ``method`` is "both" (the default) or "newton-euler" to add the Newton-Euler derivation and its
-    agreement check when the spec has bodies (not a given energy), or "lagrange" to skip it. Lagrange's
-    route always runs: Newton-Euler is checked against it.
+    ``method`` ("both", "lagrange" or "newton-euler") overrides the formulations the spec's ``methods:``
+    presents (default: Lagrange). Lagrange's route always runs, and Newton-Euler is derived whenever
+    the equations of motion are and the spec has bodies (not a given energy), for its agreement check;
+    its working is a step of the solution only when presented.
 
     Examples
     ========
@@ -66,17 +96,25 @@ def derive(system: System, method: str = "both") -> Derivation:
 
     See ``tests/models.py`` for more named example systems (cart-pole, double pendulum).
     """
-    if method not in METHODS:
-        raise ValueError(f"method must be one of {', '.join(METHODS)}, not {method!r}")
+    methods = presented_methods(system, method)
     inertia, principal = mass_properties(system)
     if not system.coordinates:
-        return Derivation(system=system, inertia=inertia, principal=principal)
-    if is_large_serial_chain(system):  # issue 8: the general route's expansions would run to pages
-        return _serial_route(system, method, inertia, principal)
-    return _general_route(system, method, inertia, principal)
+        d = Derivation(system=system, inertia=inertia, principal=principal, methods=methods)
+        return dataclasses.replace(d, steps=record_steps(d, plan_steps(system, methods)))
+    large = is_large_serial_chain(system)  # issue 8: the general route's expansions would run to pages
+    plan = plan_steps(system, methods, large)
+    if large:
+        d = _serial_route(system, methods, inertia, principal)
+    else:
+        d = _general_route(system, methods, inertia, principal, {kind for kind, _ in plan})
+    checkpoint("steps")
+    kinds = [kind for kind, _ in plan]
+    return dataclasses.replace(d, checks=reported_checks(d.checks, kinds), steps=record_steps(d, plan, large))
 
 
-def derive_with_deadline(system: System, method: str = "both", seconds: float | None = DEFAULT_TIMEOUT) -> Derivation:
+def derive_with_deadline(
+    system: System, method: str | None = None, seconds: float | None = DEFAULT_TIMEOUT
+) -> Derivation:
     """:func:`derive`, stopped after ``seconds`` (None or 0: no limit) by :func:`tutgen.limits.deadline`.
 
     ``derive`` is looked up when called, so a test that replaces it is honoured. A timeout is located at
@@ -103,7 +141,11 @@ def mass_properties(system: System) -> tuple[tuple[BodyInertia, ...], tuple[Prin
 
 
 def _general_route(
-    system: System, method: str, inertia: tuple[BodyInertia, ...], principal: tuple[Principal | None, ...]
+    system: System,
+    methods: tuple[Method, ...],
+    inertia: tuple[BodyInertia, ...],
+    principal: tuple[Principal | None, ...],
+    kinds: set[StepKind],
 ) -> Derivation:
     """Stages 2-8 for any tree of joints, bodies placed by position, or a given T and U."""
     q = [c.q for c in system.coordinates]
@@ -145,9 +187,11 @@ def _general_route(
     checkpoint("checks")
     checks = matrix_form_checks(system, hm, c_mat, eom, eom_lagrange)
     det = tidy(hm.det(method="berkowitz")) if len(q) <= 4 else None
-    remarks += degeneracy_remarks(system, hm, det, t_total, u_total, forces, eom)
+    # the remarks on H and on the equations only where they are derived (p02 asks for T alone)
+    if kinds & {StepKind.MASS_MATRIX, StepKind.EQUATIONS_OF_MOTION, StepKind.LAGRANGE_EQUATIONS}:
+        remarks += degeneracy_remarks(system, hm, det, t_total, u_total, forces, eom)
     remarks += zero_remarks(system, inertia, u_total, forces)
-    if all(first[key] == 0 for key in first):
+    if all(first[key] == 0 for key in first) and kinds & {StepKind.MASS_MATRIX, StepKind.CHRISTOFFEL}:
         remarks.append(REMARK_CONSTANT_MASS_MATRIX)
     derivation = Derivation(
         system=system,
@@ -171,13 +215,16 @@ def _general_route(
         mass_matrix_determinant=det,
         remarks=tuple(remarks),
         checks=tuple(checks),
-        method=method,
+        method=_method_name(methods),
+        methods=methods,
     )
     checkpoint("checks: mass matrix and dimensions")
     derivation = dataclasses.replace(derivation, checks=(*derivation.checks, *verify(system, derivation)))
 
-    # 8. Newton-Euler, for bodies (a given T has no bodies to free)
-    if method == "lagrange" or kin is None or not system.bodies:
+    # 8. Newton-Euler, for bodies (a given T has no bodies to free), whenever the equations of motion are
+    # derived: its agreement with Lagrange's is one of the checks even when its working is not shown
+    wanted = {StepKind.EQUATIONS_OF_MOTION, StepKind.LAGRANGE_EQUATIONS, StepKind.NEWTON_EULER}
+    if not kinds & wanted or kin is None or not system.bodies:
         return derivation
     checkpoint("Newton-Euler")
     ne = derive_newton_euler(system, derivation, kin)
@@ -185,7 +232,10 @@ def _general_route(
 
 
 def _serial_route(
-    system: System, method: str, inertia: tuple[BodyInertia, ...], principal: tuple[Principal | None, ...]
+    system: System,
+    methods: tuple[Method, ...],
+    inertia: tuple[BodyInertia, ...],
+    principal: tuple[Principal | None, ...],
 ) -> Derivation:
     """A large serial arm: H, C, G, Q, the equations of motion and the Christoffel symbols, with empty
     ``lagrange_terms`` and no Newton-Euler (see ``REMARK_FAST_PATH``).
@@ -253,7 +303,8 @@ def _serial_route(
         christoffel_first_kind={key: first.get(key, zero) for key in keys},
         remarks=tuple(remarks),
         checks=tuple(checks),
-        method=method,
+        method=_method_name(methods),
+        methods=methods,
         program=nested_dynamics(system),
     )
     # the dimensional check of checks.py is cheap; its eigenvalue check lambdifies H (seconds at 6 DOF),

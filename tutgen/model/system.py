@@ -201,6 +201,13 @@ class Ask(StrEnum):
     CHRISTOFFEL = "christoffel"
 
 
+class Method(StrEnum):
+    """A formulation a worked solution presents (the spec's ``methods:``)."""
+
+    LAGRANGE = "lagrange"
+    NEWTON_EULER = "newton_euler"
+
+
 @dataclass(frozen=True)
 class System:
     """A validated problem, ready to derive."""
@@ -220,6 +227,8 @@ class System:
     kinetic_energy: sp.Expr | None = None  # given directly (energy: section)
     potential_energy: sp.Expr | None = None
     ask: frozenset[Ask] = field(default_factory=frozenset)
+    # the formulations to present, in the spec's order (Lagrange's route is derived whatever they are)
+    methods: tuple[Method, ...] = (Method.LAGRANGE,)
     origin: Location = field(default_factory=lambda: Location("<spec>"))
     # how many significant figures decimals are printed with (None: the renderer's default, 4)
     significant_figures: int | None = None

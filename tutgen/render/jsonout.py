@@ -14,6 +14,7 @@ from sympy.printing.str import StrPrinter
 
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.newton_euler import NewtonEuler
+from tutgen.engine.steps import Step
 from tutgen.figure.view import figure_json
 from tutgen.model.system import Ask
 from tutgen.version import __version__
@@ -163,6 +164,7 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
         "coordinates": [c.name for c in system.coordinates],
         "parameters": {p.name: (value(p.value) if p.value is not None else None) for p in system.parameters},
         "results": results,
+        "steps": steps_json(d),  # additive: the worked solution's steps, docs/json-output.md#steps
         "figure": figure_json(system),  # tutgen/figure/view.py; additive, docs/json-output.md
         "remarks": list(d.remarks),
         "checks": [{"name": c.name, "passed": c.passed, "detail": c.detail} for c in d.checks],
@@ -182,6 +184,48 @@ def _newton_euler(ne: NewtonEuler, num: Any) -> dict[str, Any]:
         "agrees_with_lagrange": ne.agrees_with_lagrange,
         "remarks": list(ne.remarks),
     }
+
+
+#: an equation side longer than this (characters of its text form) has no LaTeX in ``steps``
+#: (``null``): the entries of a large serial arm, printed as a program in the worked solution anyway
+STEP_LATEX_LIMIT = 20000
+
+
+def steps_json(d: Derivation) -> list[dict[str, Any]]:
+    """The worked solution's steps in teaching order (tutgen.engine.steps): kind, quantity, why, the
+    ids of the steps each depends on, and its equations, each side as a value (like ``results``,
+    parameters with values substituted) and as LaTeX."""
+    from tutgen.render.printer import TexPrinter  # the printer of the worked solutions
+
+    tex = TexPrinter(d.system)
+    num = d.numeric
+
+    def side(expr: sp.Basic) -> tuple[Any, str | None]:
+        if isinstance(expr, sp.MatrixBase):
+            shown = num(expr)
+            data: Any = matrix(shown)
+            size = len(str(data))
+        else:
+            shown = num(expr)
+            data = value(shown)
+            size = len(str(data))
+        return data, (tex(shown) if size <= STEP_LATEX_LIMIT else None)
+
+    def one(step: Step) -> dict[str, Any]:
+        equations = []
+        for eq in step.equations:
+            rhs, rhs_tex = side(eq.rhs)
+            equations.append({"lhs": expr_text(eq.lhs), "rhs": rhs, "lhs_latex": tex(eq.lhs), "rhs_latex": rhs_tex})
+        return {
+            "id": step.id,
+            "kind": step.kind.value,
+            "quantity": step.quantity,
+            "why": step.why,
+            "depends_on": list(step.depends_on),
+            "equations": equations,
+        }
+
+    return [one(step) for step in d.steps]
 
 
 def _christoffel(table: dict[tuple[int, int, int], sp.Expr], num: Any) -> dict[str, Any]:

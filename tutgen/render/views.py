@@ -1,6 +1,7 @@
 """Derivation -> a format-neutral template context of plain data: the worked solution's sections in
-teaching order (:data:`SECTIONS`, one builder module each in tutgen/render/sections/), with the problem's
-data, figure, remarks and checks. The blocks and parts the context is made of are described in
+teaching order, one per kind of step of ``Derivation.steps`` (:data:`BUILDERS`, one builder module each in
+tutgen/render/sections/; a section exists only if its step does), with the problem's data, figure,
+remarks and checks. The blocks and parts the context is made of are described in
 tutgen/render/blocks.py.
 
 ``remarks`` and ``checks`` (tutgen's own sentences, maths typeset), ``section.intro``,
@@ -14,6 +15,7 @@ from collections.abc import Callable
 from typing import Any
 
 from tutgen.engine.derivation import Derivation
+from tutgen.engine.steps import StepKind
 from tutgen.figure.view import figure_view
 from tutgen.model.system import System
 from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, prose, rich, unit_tex
@@ -27,19 +29,42 @@ from tutgen.render.sections.newton_euler import newton_euler
 from tutgen.render.wording import engine_parts
 from tutgen.spec.units import decimal_text, in_unit
 
-__all__ = ["SECTIONS", "coordinate_items", "given_items", "prose", "rich", "solution_view"]
+__all__ = ["BUILDERS", "coordinate_items", "given_items", "prose", "rich", "sections", "solution_view"]
 
-#: the sections of a worked solution, in teaching order; each returns its section or None
-SECTIONS: tuple[Callable[[SolutionContext], dict[str, Any] | None], ...] = (
-    mass_properties,
-    kinematics,
-    energies,
-    lagrange_equations,
-    equations_of_motion,
-    matrix_form,
-    christoffel_symbols,
-    newton_euler,
-)
+Builder = Callable[[SolutionContext], dict[str, Any] | None]
+
+#: the section builder of each kind of step; kinds that share a builder (T, U and L: the energies) are
+#: one section, placed where the first of them is. Each returns its section, or None when the
+#: derivation has nothing to show (a lone point mass has no inertia to tabulate)
+BUILDERS: dict[StepKind, Builder] = {
+    StepKind.INERTIA: mass_properties,
+    StepKind.KINEMATICS: kinematics,
+    StepKind.KINETIC_ENERGY: energies,
+    StepKind.POTENTIAL_ENERGY: energies,
+    StepKind.LAGRANGIAN: energies,
+    StepKind.LAGRANGE_EQUATIONS: lagrange_equations,
+    StepKind.NEWTON_EULER: newton_euler,
+    StepKind.EQUATIONS_OF_MOTION: equations_of_motion,
+    StepKind.MASS_MATRIX: matrix_form,
+    StepKind.MATRIX_FORM: matrix_form,
+    StepKind.MASS_MATRIX_DERIVATIVES: christoffel_symbols,
+    StepKind.CHRISTOFFEL: christoffel_symbols,
+}
+
+
+def sections(context: SolutionContext) -> list[dict[str, Any]]:
+    """The sections of the worked solution: the derivation's steps in order, each kind by its builder,
+    each builder once."""
+    built: list[Builder] = []
+    out: list[dict[str, Any]] = []
+    for step in context.d.steps:
+        build = BUILDERS[step.kind]
+        if build in built:
+            continue
+        built.append(build)
+        if (sec := build(context)) is not None:
+            out.append(sec)
+    return out
 
 
 def given_items(system: System) -> list[list[Part]]:
@@ -81,7 +106,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
             return all_decimals(d.numeric(expr))
 
     context = SolutionContext(d, tex, num)
-    sections = [sec for build in SECTIONS if (sec := build(context)) is not None]
+    parts = sections(context)
     given = given_items(s)
     coords = coordinate_items(s)
 
@@ -91,7 +116,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
         "statement_parts": rich(s.statement or "", tex),
         "given": given,
         "coordinates": coords,
-        "sections": sections,
+        "sections": parts,
         "figure": figure_view(s),  # tutgen/figure/view.py: the schematic (TikZ, SVG name) or the spec's picture
         # tutgen's own sentences, their ASCII maths (q_ddot, theta1, H = H^T) typeset
         "remarks": [engine_parts(r, tex) for r in d.remarks],

@@ -49,7 +49,7 @@ class Shared:
     problems: tuple[ProblemBase, ...]
     formats: tuple[str, ...]
     seed: int
-    method: str
+    method: str | None  # the --method override, or None: each spec's own `methods:`
     build: str = ""  # names one build: a worker's memo of another build's results is dropped
 
 
@@ -78,7 +78,7 @@ class SheetBuild:
 
 
 def variant_derivation(
-    base: ProblemBase, variant: str, seed: int, method: str
+    base: ProblemBase, variant: str, seed: int, method: str | None
 ) -> tuple[Derivation, dict[str, Any], bool, str]:
     """This variant's derivation of one problem: the base derivation with the variant's values put in,
     or, when the values change the structure, a fresh derivation of the concrete spec. Also returns the
@@ -241,7 +241,7 @@ def _md_figure(view: dict[str, Any], figure: tuple[str, str] | None) -> dict[str
 
 
 def derive_problems(
-    sheet: Sheet, method: str = "lagrange", timeout: float | None = None
+    sheet: Sheet, method: str | None = None, timeout: float | None = None
 ) -> tuple[list[Derivation], float]:
     """Each problem's derivation, once (raises DerivationError naming the spec); and the seconds taken."""
     from tutgen.engine.pipeline import derive_with_deadline
@@ -258,7 +258,7 @@ def build_sheet(
     variants: Sequence[Variant] = (),
     seed: int = 0,
     executor: Any = None,
-    method: str = "lagrange",
+    method: str | None = None,
     timeout: float | None = None,
     derivations: Sequence[Derivation] | None = None,
     on_done: Callable[[], None] | None = None,

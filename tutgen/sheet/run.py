@@ -325,7 +325,7 @@ def run_sheet(
     workers: int | None = None,
     scheduler: str | None = None,
     timeout: float | None = None,
-    method: str = "lagrange",
+    method: str | None = None,
     on_done: Callable[[], None] | None = None,
 ) -> str:
     """Derive, build every sheet (in the executor), then write every file; returns a one-line report.

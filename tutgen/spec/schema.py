@@ -582,6 +582,8 @@ AskItem = Literal[
     "christoffel",
 ]
 
+MethodItem = Literal["lagrange", "newton_euler"]
+
 
 class SimulateSpec(SpecModel):
     """What `tutgen simulate` integrates (docs/simulate.md)."""
@@ -671,6 +673,12 @@ class SpecDoc(SpecModel):
     )
     energy: EnergySpec | None = None
     ask: list[AskItem] | None = Field(None, description="What to derive (default: everything that applies).")
+    methods: list[MethodItem] | None = Field(
+        None,
+        description="The formulations the worked solution presents: [lagrange] (the default), [newton_euler] "
+        "or [lagrange, newton_euler]. Newton-Euler is derived for its agreement check whenever the system "
+        "has bodies; its working is printed only when it is listed here.",
+    )
     figure: FigureSpec | None = Field(None, description="How the figure is drawn, or the instructor's own picture.")
     simulate: SimulateSpec | None = Field(None, description="Initial conditions and inputs for `tutgen simulate`.")
     marking: dict[str, Any] | None = Field(

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from tutgen.engine.steps import StepKind
 from tutgen.model.system import Ask
 from tutgen.render.blocks import (
     PRINT_BUDGET,
@@ -21,7 +22,7 @@ from tutgen.render.blocks import (
 
 def energies(c: SolutionContext) -> dict[str, Any] | None:
     d, s, tex, num = c.d, c.s, c.tex, c.num
-    if d.kinetic_energy is None or not (Ask.KINETIC_ENERGY in s.ask or Ask.EQUATIONS_OF_MOTION in s.ask):
+    if d.kinetic_energy is None or not d.has_step(StepKind.KINETIC_ENERGY):
         return None
     intro = (
         "The kinetic energy is given in the problem."
@@ -41,9 +42,9 @@ def energies(c: SolutionContext) -> dict[str, Any] | None:
         blocks.append(para(prose(f"with $H$ of the matrix form below (written out, $T$ has {t_size} operations).")))
     else:
         blocks.append((boxed if only_t else display)(tex.equation("T", num(d.kinetic_energy))))
-    if d.potential_energy is not None and Ask.POTENTIAL_ENERGY in s.ask:
+    if d.potential_energy is not None and d.has_step(StepKind.POTENTIAL_ENERGY):
         u = num(d.potential_energy)
         blocks.append(display(tex.equation("U", long_decimals(u) if long_t else u)))
-    if d.lagrangian is not None and Ask.LAGRANGIAN in s.ask and not long_t:
+    if d.lagrangian is not None and d.has_step(StepKind.LAGRANGIAN) and not long_t:
         blocks.append(display(tex.equation("L = T - U", num(d.lagrangian))))
     return sec

@@ -7,7 +7,7 @@ from typing import Any
 
 import sympy as sp
 
-from tutgen.model.system import Ask
+from tutgen.engine.steps import StepKind
 from tutgen.render.blocks import (
     SolutionContext,
     as_number,
@@ -24,7 +24,7 @@ from tutgen.render.blocks import (
 
 def mass_properties(c: SolutionContext) -> dict[str, Any] | None:
     d, s, tex, num = c.d, c.s, c.tex, c.num
-    if Ask.INERTIA not in s.ask or not d.inertia:
+    if not d.has_step(StepKind.INERTIA) or not d.inertia:
         return None
     sec = section(
         "Mass properties",

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from tutgen.model.system import Ask
+from tutgen.engine.steps import StepKind
 from tutgen.render.blocks import PRINT_BUDGET, SolutionContext, boxed, math, ops, para, section, stacked, text
 
 
 def lagrange_equations(c: SolutionContext) -> dict[str, Any] | None:
     d, s, tex, num = c.d, c.s, c.tex, c.num
-    if not d.lagrange_terms or Ask.LAGRANGE_EQUATIONS not in s.ask or (d.method == "newton-euler" and d.newton_euler):
+    if not d.lagrange_terms or not d.has_step(StepKind.LAGRANGE_EQUATIONS):
         return None
     sec = section(
         "Lagrange's equations",
@@ -35,7 +35,7 @@ def lagrange_equations(c: SolutionContext) -> dict[str, Any] | None:
 
 def equations_of_motion(c: SolutionContext) -> dict[str, Any] | None:
     d, s, tex, num = c.d, c.s, c.tex, c.num
-    if d.equations_of_motion is None or Ask.EQUATIONS_OF_MOTION not in s.ask:
+    if d.equations_of_motion is None or not d.has_step(StepKind.EQUATIONS_OF_MOTION):
         return None
     eom_size = ops(d.equations_of_motion)
     if eom_size > PRINT_BUDGET:

@@ -5,8 +5,10 @@ from __future__ import annotations
 
 from typing import Any
 
+import sympy as sp
+
 from tutgen.engine.derivation import Derivation
-from tutgen.model.system import Ask
+from tutgen.engine.steps import Step, StepKind
 from tutgen.render.blocks import (
     PRINT_BUDGET,
     PROGRAM_BUDGET,
@@ -25,8 +27,9 @@ from tutgen.render.printer import TexPrinter
 
 def matrix_form(c: SolutionContext) -> dict[str, Any] | None:
     d, s, tex, num = c.d, c.s, c.tex, c.num
-    if d.mass_matrix is None or not (Ask.MATRIX_FORM in s.ask or Ask.CHRISTOFFEL in s.ask):
+    if d.mass_matrix is None or not d.has_step(StepKind.MASS_MATRIX):
         return None
+    with_c_g = d.has_step(StepKind.MATRIX_FORM)
     sec = section(
         "Matrix form",
         "$H(q)\\ddot q + C(q,\\dot q) + G(q) = Q$, with $H$ read off "
@@ -34,12 +37,13 @@ def matrix_form(c: SolutionContext) -> dict[str, Any] | None:
     )
     size = ops(d.mass_matrix, d.coriolis_vector, d.gravity_vector)
     if size > PROGRAM_BUDGET and d.program is not None and not s.springs:
-        sec["blocks"] += program_blocks(d, tex, num, size, Ask.MATRIX_FORM in s.ask)
+        sec["blocks"] += program_blocks(d, tex, num, size, with_c_g)
     elif size > PRINT_BUDGET:
-        sec["blocks"] += entry_by_entry(d, tex, num, Ask.MATRIX_FORM in s.ask)
+        sec["blocks"] += entry_by_entry(d, tex, num, with_c_g)
     else:
+        sec["blocks"] += read_off(d, tex, num)
         sec["blocks"].append(display(f"H = {tex(num(d.mass_matrix))}"))
-    if Ask.MATRIX_FORM in s.ask and size <= PRINT_BUDGET:
+    if with_c_g and size <= PRINT_BUDGET:
         sec["blocks"].append(
             display(
                 f"C = {tex(num(d.coriolis_vector))},\\quad G = {tex(num(d.gravity_vector))},"
@@ -49,16 +53,60 @@ def matrix_form(c: SolutionContext) -> dict[str, Any] | None:
     return sec
 
 
+def _step(d: Derivation, kind: StepKind) -> Step | None:
+    return next((st for st in d.steps if st.kind is kind), None)
+
+
+def read_off(d: Derivation, tex: TexPrinter, num: Any) -> list[Block]:
+    """T = 1/2 q_dot^T H q_dot written out term by term, and each H_ij read off the coefficient of
+    q_dot_i q_dot_j in T (the mass-matrix step's equations), as the tutorial's problem 10 does."""
+    step = _step(d, StepKind.MASS_MATRIX)
+    entries = [e for e in step.equations if isinstance(e.lhs, sp.Indexed)] if step is not None else []
+    if not entries:
+        return []
+    rates = [tex(q.qd) for q in d.system.coordinates]
+    terms = []
+    for e in entries:
+        i, j = (int(x) - 1 for x in e.lhs.indices)
+        if i == j:
+            terms.append(f"\\tfrac12 H_{{{i + 1}{i + 1}}}{rates[i]}^2")
+        else:
+            terms.append(f"H_{{{i + 1}{j + 1}}}{rates[i]}{rates[j]}")
+    lines = []
+    for e in entries:
+        i, j = (int(x) - 1 for x in e.lhs.indices)
+        name = f"H_{{{i + 1}{j + 1}}}" + (f" = H_{{{j + 1}{i + 1}}}" if i != j else "")
+        lines.append(f"{name} = {tex(num(e.rhs))}")
+    return [
+        para(
+            prose(
+                "Compare $T = \\tfrac12\\dot q^T H\\dot q = " + " + ".join(terms) + "$ with $T$ term by term: "
+                "$H_{ii}$ is twice the coefficient of $\\dot q_i^2$, and $H_{ij}$ ($i \\ne j$) the coefficient "
+                "of $\\dot q_i \\dot q_j$:"
+            )
+        ),
+        display(",\\quad ".join(lines)),
+    ]
+
+
+def _partial(a: int, b: int, k: int, d: Derivation) -> str:
+    """dH_ab/dq_k, 0-based, with H's symmetry written out as H_ab (a <= b)."""
+    a, b = min(a, b), max(a, b)
+    return f"\\frac{{\\partial H_{{{a + 1}{b + 1}}}}}{{\\partial {d.system.coordinates[k].latex}}}"
+
+
 def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
-    d, s, tex, num = c.d, c.s, c.tex, c.num
-    if not d.christoffel or Ask.CHRISTOFFEL not in s.ask:
+    """The non-zero dH_ij/dq_k, then each non-zero Christoffel symbol from its definition in both
+    conventions (the tutorial's h_ijk and the symmetric c_ijk of the first kind), then C as a vector."""
+    d, tex, num = c.d, c.tex, c.num
+    if not d.christoffel or not d.has_step(StepKind.CHRISTOFFEL):
         return None
     sec = section(
         "Christoffel symbols",
         "In the tutorial's convention $h_{ijk} = \\partial H_{ij}/\\partial q_k - \\tfrac12 "
         "\\partial H_{jk}/\\partial q_i$, with $C_i = \\sum_{j,k} h_{ijk}\\dot q_j \\dot q_k$; "
         "the symmetric symbols of the first kind are $c_{ijk} = \\tfrac12(\\partial_k H_{ij} + "
-        "\\partial_j H_{ik} - \\partial_i H_{jk})$.",
+        "\\partial_j H_{ik} - \\partial_i H_{jk})$, with the same sum.",
     )
     blocks = sec["blocks"]
     nonzero = [(k, v) for k, v in sorted(d.christoffel.items()) if v != 0]
@@ -73,17 +121,68 @@ def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
                 )
             )
         )
-    elif nonzero:
-        blocks.append(
-            display(",\\quad ".join(f"h_{{{i + 1}{j + 1}{k + 1}}} = {tex(num(v))}" for (i, j, k), v in nonzero))
-        )
-        blocks.append(para(prose("All other $h_{ijk}$ are zero.")))
-        first = [(k, v) for k, v in sorted(d.christoffel_first_kind.items()) if v != 0]
-        blocks.append(
-            display(",\\quad ".join(f"c_{{{i + 1}{j + 1}{k + 1}}} = {tex(num(v))}" for (i, j, k), v in first))
-        )
-    else:
+        return sec
+    if not nonzero:
         blocks.append(para(prose("$H$ is constant, so every Christoffel symbol vanishes and $C = 0$.")))
+        return sec
+    # the derivatives of H's entries, from the step that lists them (H symmetric: i <= j)
+    step = _step(d, StepKind.MASS_MATRIX_DERIVATIVES)
+    coords = {q.q: k for k, q in enumerate(d.system.coordinates)}
+    derivative: dict[tuple[int, int, int], sp.Expr] = {}
+    for e in step.equations if step is not None else ():
+        a, b = (int(x) - 1 for x in e.lhs.expr.indices)
+        derivative[a, b, coords[e.lhs.variables[0]]] = e.rhs
+    # a large serial arm's route has its symbols from the recursion, without the table of dH/dq
+    defined = bool(derivative)
+    if defined:
+        blocks.append(
+            para(
+                prose(
+                    "The entries of $H$ that depend on the coordinates, differentiated (all other "
+                    "$\\partial H_{ij}/\\partial q_k$ are zero; $H_{ji} = H_{ij}$):"
+                )
+            )
+        )
+        blocks.append(
+            display(",\\quad ".join(f"{_partial(a, b, k, d)} = {tex(num(v))}" for (a, b, k), v in derivative.items()))
+        )
+
+    def dh(a: int, b: int, k: int) -> sp.Expr:
+        return derivative.get((min(a, b), max(a, b), k), sp.Integer(0))
+
+    lines = []
+    for (i, j, k), v in nonzero:
+        first, second = dh(i, j, k), dh(j, k, i)
+        line = f"h_{{{i + 1}{j + 1}{k + 1}}}"
+        if defined:
+            line += f" = {_partial(i, j, k, d)} - \\tfrac12 {_partial(j, k, i, d)}"
+        if first != 0 and second != 0:  # both terms: their values, before the sum
+            line += f" = {tex(num(first))} - \\tfrac12\\left({tex(num(second))}\\right)"
+        lines.append(f"{line} = {tex(num(v))}")
+    from_definition = " from its definition" if defined else ""
+    blocks.append(para(prose(f"Each nonzero $h_{{ijk}}${from_definition} (all other $h_{{ijk}}$ are zero):")))
+    blocks.append(stacked(lines))
+    first_kind = [(k, v) for k, v in sorted(d.christoffel_first_kind.items()) if v != 0]
+    blocks.append(para(prose(f"Each nonzero $c_{{ijk}}${from_definition} ($c_{{ikj}} = c_{{ijk}}$):")))
+    blocks.append(
+        stacked(
+            [
+                f"c_{{{i + 1}{j + 1}{k + 1}}} = "
+                + (
+                    f"\\tfrac12\\left({_partial(i, j, k, d)} + {_partial(i, k, j, d)} - "
+                    f"{_partial(j, k, i, d)}\\right) = "
+                    if defined
+                    else ""
+                )
+                + tex(num(v))
+                for (i, j, k), v in first_kind
+                if j <= k
+            ]
+        )
+    )
+    if d.coriolis_vector is not None:
+        blocks.append(para(prose("Contracted with the rates, $C_i = \\sum_{j,k} h_{ijk}\\dot q_j\\dot q_k$:")))
+        blocks.append(display(f"C = {tex(num(d.coriolis_vector))}"))
     return sec
 
 

@@ -8,9 +8,32 @@ from tutgen.spec.builders.context import Context
 
 def build_ask(ctx: Context, dynamic: bool) -> frozenset[Ask]:
     """What to derive: the items of `ask`, or by default everything that applies (only the inertia of a
-    spec that has nothing that moves, ``dynamic`` False)."""
+    spec that has nothing that moves, ``dynamic`` False).
+
+    An item that does not apply is a problem at its place: anything but `inertia` without coordinates
+    (nothing moves), `inertia` without bodies (a system given by its energy).
+    """
     if ctx.doc.ask is not None:
-        return frozenset(Ask(a) for a in ctx.doc.ask)
+        # coordinates set aside for a shape error (already reported) may be what is missing: no cascade
+        unsure = bool(ctx.dropped_keys & {"coordinates", "arm", "joints"})
+        asked: set[Ask] = set()
+        for i, item in enumerate(ctx.doc.ask):
+            a = Ask(item)
+            if a is not Ask.INERTIA and not dynamic and not unsure:
+                ctx.error(
+                    ("ask", i),
+                    f"`{item}` needs generalized coordinates, and the spec has no `coordinates`; "
+                    "expected `inertia` only, or coordinates that say what moves",
+                )
+            elif a is Ask.INERTIA and ctx.doc.energy is not None and not ctx.doc.bodies:
+                ctx.error(
+                    ("ask", i),
+                    "`inertia` needs bodies, and the spec gives its energy (`energy`) instead; expected "
+                    "the bodies, or no `inertia` in `ask`",
+                )
+            else:
+                asked.add(a)
+        return frozenset(asked)
     if not dynamic:
         return frozenset({Ask.INERTIA})
     everything = set(Ask)

@@ -16,7 +16,8 @@ def build_energy(ctx: Context, bodies: set[str]) -> tuple[sp.Expr | None, sp.Exp
     # keys set aside for shape errors (or unknown ones, perhaps a misspelt `bodies`) may be what
     # is missing here: guess nothing about them
     unsure = bool(
-        ctx.dropped_keys - {"tutgen", "title", "statement", "gravity", "ask", "significant_figures", "marking"}
+        ctx.dropped_keys
+        - {"tutgen", "title", "statement", "gravity", "ask", "methods", "significant_figures", "marking", "simulate"}
     )
     has_bodies = bool(ctx.doc.bodies or ctx.doc.joints or bodies or ctx.doc.arm)
     has_bodies |= bool(ctx.dropped_names("joints"))

@@ -26,6 +26,7 @@ from tutgen.spec.builders.gravity import build_gravity
 from tutgen.spec.builders.joints import build_joints, check_explicit_placement
 from tutgen.spec.builders.loads import build_generalized_forces, build_loads
 from tutgen.spec.builders.marking import build_marking
+from tutgen.spec.builders.methods import build_methods
 from tutgen.spec.builders.parameters import build_parameters
 from tutgen.spec.builders.simulate import build_simulate
 from tutgen.spec.builders.texts import build_statement, build_texts, build_title
@@ -62,9 +63,10 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
     simulation = build_simulate(ctx)
     marking = build_marking(ctx)
     texts = build_texts(ctx)  # last: their maths may use every declared name
+    ask = build_ask(ctx, bool(ctx.coords))
+    methods = build_methods(ctx, ask)  # after `ask`: Newton-Euler needs equations of motion asked for
     if ctx.errors:
         raise SpecErrors(ctx.errors)
-    ask = build_ask(ctx, bool(ctx.coords))
 
     # each coordinate's dimension is known only now (a joint may have given it)
     coordinates = coordinates_with_dimensions(ctx)
@@ -88,6 +90,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
         kinetic_energy=kinetic,
         potential_energy=potential,
         ask=ask,
+        methods=methods,
         origin=smap.location(()),
         significant_figures=ctx.doc.significant_figures,
         figure=figure,
