@@ -81,7 +81,7 @@ def test_results_too_long_to_read_are_printed_as_the_recursive_program(monkeypat
     180 000 operations otherwise make 7 MB of Markdown."""
     import re
 
-    from tutgen.render import views
+    from tutgen.render import blocks  # the budgets, read by the section builders when they run
     from tutgen.render.markdown import render_markdown
 
     _, d, _ = solved(str(ROOT / "specs" / "arms" / "scara.yaml"))
@@ -89,12 +89,12 @@ def test_results_too_long_to_read_are_printed_as_the_recursive_program(monkeypat
     whole = render_markdown(d)
     assert "intermediate quantities" not in whole and "H_{11} &= " in whole  # too wide for a matrix: by entry
 
-    monkeypatch.setattr(views, "PRINT_BUDGET", 0)
+    monkeypatch.setattr(blocks, "PRINT_BUDGET", 0)
     entries = render_markdown(d)
     assert "H_{11}" in entries and "H = \\begin{bmatrix}" not in entries and "intermediate" not in entries
     assert "too many to print here" in entries  # the Christoffel symbols are left to the JSON
 
-    monkeypatch.setattr(views, "PROGRAM_BUDGET", 0)
+    monkeypatch.setattr(blocks, "PROGRAM_BUDGET", 0)
     program = render_markdown(d)
     assert "intermediate quantities" in program
     defined: set[str] = set()

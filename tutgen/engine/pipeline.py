@@ -227,7 +227,8 @@ def _general_route(
     if not kinds & wanted or kin is None or not system.bodies:
         return derivation
     checkpoint("Newton-Euler")
-    ne = derive_newton_euler(system, derivation, kin)
+    # the planar working (free bodies, eliminations: a quarter more time) only when it is printed
+    ne = derive_newton_euler(system, derivation, kin, planar=Method.NEWTON_EULER in methods)
     return dataclasses.replace(derivation, newton_euler=ne, checks=(*derivation.checks, ne.agreement))
 
 

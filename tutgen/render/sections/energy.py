@@ -6,8 +6,8 @@ from typing import Any
 
 from tutgen.engine.steps import StepKind
 from tutgen.model.system import Ask
+from tutgen.render import blocks as budgets  # PRINT_BUDGET, PROGRAM_BUDGET read when a section is built
 from tutgen.render.blocks import (
-    PRINT_BUDGET,
     SolutionContext,
     boxed,
     display,
@@ -33,7 +33,7 @@ def energies(c: SolutionContext) -> dict[str, Any] | None:
     sec = section("Energies", intro)
     blocks = sec["blocks"]
     t_size = ops(d.kinetic_energy)
-    long_t = t_size > PRINT_BUDGET
+    long_t = t_size > budgets.PRINT_BUDGET
     for e in d.energies:
         blocks.append(display(tex.equation(f"T_{{{tex_name(e.name)}}}", num(e.kinetic))))
     only_t = Ask.EQUATIONS_OF_MOTION not in s.ask and Ask.KINETIC_ENERGY in s.ask

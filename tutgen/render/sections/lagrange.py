@@ -5,7 +5,8 @@ from __future__ import annotations
 from typing import Any
 
 from tutgen.engine.steps import StepKind
-from tutgen.render.blocks import PRINT_BUDGET, SolutionContext, boxed, math, ops, para, section, stacked, text
+from tutgen.render import blocks as budgets  # PRINT_BUDGET, PROGRAM_BUDGET read when a section is built
+from tutgen.render.blocks import SolutionContext, boxed, math, ops, para, section, stacked, text
 
 
 def lagrange_equations(c: SolutionContext) -> dict[str, Any] | None:
@@ -38,7 +39,7 @@ def equations_of_motion(c: SolutionContext) -> dict[str, Any] | None:
     if d.equations_of_motion is None or not d.has_step(StepKind.EQUATIONS_OF_MOTION):
         return None
     eom_size = ops(d.equations_of_motion)
-    if eom_size > PRINT_BUDGET:
+    if eom_size > budgets.PRINT_BUDGET:
         sec = section(
             "Equations of motion",
             f"Written out, the {len(s.coordinates)} equations have {eom_size} operations: "

@@ -9,9 +9,8 @@ import sympy as sp
 
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.steps import Step, StepKind
+from tutgen.render import blocks as budgets  # PRINT_BUDGET, PROGRAM_BUDGET read when a section is built
 from tutgen.render.blocks import (
-    PRINT_BUDGET,
-    PROGRAM_BUDGET,
     Block,
     SolutionContext,
     display,
@@ -36,14 +35,14 @@ def matrix_form(c: SolutionContext) -> dict[str, Any] | None:
         "$T = \\tfrac12 \\dot q^T H \\dot q$ and $G = \\partial U/\\partial q$.",
     )
     size = ops(d.mass_matrix, d.coriolis_vector, d.gravity_vector)
-    if size > PROGRAM_BUDGET and d.program is not None and not s.springs:
+    if size > budgets.PROGRAM_BUDGET and d.program is not None and not s.springs:
         sec["blocks"] += program_blocks(d, tex, num, size, with_c_g)
-    elif size > PRINT_BUDGET:
+    elif size > budgets.PRINT_BUDGET:
         sec["blocks"] += entry_by_entry(d, tex, num, with_c_g)
     else:
         sec["blocks"] += read_off(d, tex, num)
         sec["blocks"].append(display(f"H = {tex(num(d.mass_matrix))}"))
-    if with_c_g and size <= PRINT_BUDGET:
+    if with_c_g and size <= budgets.PRINT_BUDGET:
         sec["blocks"].append(
             display(
                 f"C = {tex(num(d.coriolis_vector))},\\quad G = {tex(num(d.gravity_vector))},"
@@ -111,7 +110,7 @@ def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
     blocks = sec["blocks"]
     nonzero = [(k, v) for k, v in sorted(d.christoffel.items()) if v != 0]
     size = ops(*(v for _, v in nonzero))
-    if size > PRINT_BUDGET:
+    if size > budgets.PRINT_BUDGET:
         blocks.append(
             para(
                 prose(
