@@ -57,6 +57,7 @@ _SPACES = {
 }
 _OPERATORS = {"sin", "cos", "tan", "cot", "sec", "csc", "det", "log", "exp", "ln", "max", "min"}
 _ZERO = {
+    "hline",
     "left",
     "right",
     "textstyle",
@@ -213,7 +214,11 @@ def tex_width(tex: str, scale: float = 1.0, display: bool = True) -> float:
             elif name == "begin":
                 env = _group(cur)
                 body = _environment(cur, env)
-                if env.endswith("matrix"):
+                if env == "array":  # its column specification first, then cells as a matrix's
+                    spec = _Cursor(body)
+                    _group(spec)
+                    total += _matrix_width(body[spec.pos :], scale)
+                elif env.endswith("matrix"):
                     total += _matrix_width(body, scale)
                 elif env in ("aligned", "gathered", "split", "align*", "gather*"):
                     total += max((tex_width(r, scale, True) for r in split_top(body, "\\\\")), default=0.0)

@@ -249,7 +249,11 @@ class TexPrinter:
         if isinstance(expr, float):
             expr = sp.Float(expr)
         if _is_sum(expr) and sp.count_ops(expr) <= ORDER_BUDGET:
-            expr = order.arranged(expr, self.levels)
+            if isinstance(expr, sp.Add):
+                expr = order.arranged(expr, self.levels)
+            else:  # a product keeps its factoring (m_2 l_2^2 (…)); its brackets are arranged
+                args = [order.arranged(f, self.levels) if isinstance(f, sp.Add) else f for f in expr.args]
+                expr = sp.Mul(*args, evaluate=False)
         settings = {
             "symbol_names": self.names,
             "roles": self.roles,

@@ -18,6 +18,7 @@ from tutgen.figure.view import figure_view
 from tutgen.model.system import System
 from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, prose, rich, unit_tex
 from tutgen.render.printer import TexPrinter
+from tutgen.render.sections.arm import arm_table
 from tutgen.render.sections.energy import energies
 from tutgen.render.sections.inertia import mass_properties
 from tutgen.render.sections.kinematics import kinematics
@@ -33,6 +34,7 @@ __all__ = ["SECTIONS", "coordinate_items", "given_items", "prose", "rich", "solu
 SECTIONS: tuple[Callable[[SolutionContext], dict[str, Any] | None], ...] = (
     mass_properties,
     kinematics,
+    arm_table,
     energies,
     lagrange_equations,
     equations_of_motion,

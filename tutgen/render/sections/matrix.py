@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from typing import Any
 
+import sympy as sp
+
 from tutgen.engine.derivation import Derivation
 from tutgen.model.system import Ask
 from tutgen.render.blocks import (
@@ -20,6 +22,7 @@ from tutgen.render.blocks import (
     section,
     stacked,
 )
+from tutgen.render.layout import LINE_WIDTH_PT, tex_width
 from tutgen.render.printer import TexPrinter
 
 
@@ -46,7 +49,87 @@ def matrix_form(c: SolutionContext) -> dict[str, Any] | None:
                 f"\\quad Q = {tex(num(d.generalized_forces))}"
             )
         )
+        sec["blocks"] += assembled(c) + coriolis_matrix_blocks(c)
+    if size <= PRINT_BUDGET:
+        sec["blocks"] += determinant_blocks(c)
     return sec
+
+
+#: the assembled H q_ddot + C + G = Q and det H are printed only for results this short (operations)
+ASSEMBLED_BUDGET = 400
+
+
+def assembled(c: SolutionContext) -> list[Block]:
+    """The matrix form with the matrices written out once, ``[H][q̈] + [C] + [G] = [Q]`` (as tutorial
+    problem 9 prints it), when it fits on one line; it is not broken across lines (the entries above are)."""
+    d, tex, num = c.d, c.tex, c.num
+    if ops(d.mass_matrix, d.coriolis_vector, d.gravity_vector) > ASSEMBLED_BUDGET:
+        return []
+    qdd = sp.ImmutableMatrix([q.qdd for q in c.s.coordinates])
+    parts = [f"{tex(num(d.mass_matrix))} {tex(qdd)}"]
+    parts += [tex(num(v)) for v in (d.coriolis_vector, d.gravity_vector) if any(e != 0 for e in v)]
+    line = " + ".join(parts) + f" = {tex(num(d.generalized_forces))}"
+    if tex_width(line) > LINE_WIDTH_PT:
+        return []
+    return [para(prose("Assembled:")), display(line)]
+
+
+def coriolis_matrix_blocks(c: SolutionContext) -> list[Block]:
+    """``C = C'(q, q̇) q̇``: the matrix with ``C'_{ij} = Σ_k c_{ijk} q̇_k`` (the symmetric symbols), the one
+    tutorial problem 7 prints, for which ``Ḣ - 2C'`` is skew-symmetric; the form ``H q̈ + C' q̇ + G = Q``."""
+    d, tex, num = c.d, c.tex, c.num
+    if d.coriolis_matrix is None or all(e == 0 for e in d.coriolis_matrix):
+        return []
+    qd = sp.ImmutableMatrix([q.qd for q in c.s.coordinates])
+    return [
+        para(
+            prose(
+                "The same $C$ is a matrix times the rates, $C = C'(q,\\dot q)\\,\\dot q$ with "
+                "$C'_{ij} = \\sum_k c_{ijk}\\dot q_k$, so that $H\\ddot q + C'\\dot q + G = Q$ "
+                "and $\\dot H - 2C'$ is skew-symmetric:"
+            )
+        ),
+        display(f"C' = {tex(num(d.coriolis_matrix))},\\quad C = C' {tex(qd)}"),
+    ]
+
+
+def determinant_blocks(c: SolutionContext) -> list[Block]:
+    """``det H`` where it matters: when it depends on the coordinates (the configurations where it vanishes
+    are singular) or is zero (then ``H`` cannot be inverted, as in tutorial problem 9)."""
+    d, tex, num = c.d, c.tex, c.num
+    det = d.mass_matrix_determinant
+    if det is None or ops(det) > ASSEMBLED_BUDGET or d.mass_matrix.shape[0] < 2:
+        return []
+    coordinates = {s for q in c.s.coordinates for s in (q.q, q.qd)}
+    if det == 0:
+        return [
+            display("\\det H = 0"),
+            para(
+                prose(
+                    "$H$ is singular: it has no inverse, so the equations cannot be solved for every "
+                    "acceleration, $\\ddot q = H^{-1}(Q - C - G)$ does not exist."
+                )
+            ),
+        ]
+    if not (sp.sympify(det).free_symbols & coordinates):
+        return []
+    return [
+        para(prose("Its determinant depends on the configuration; $H$ is singular where it vanishes:")),
+        display(f"\\det H = {tex(num(factor_det(det)))}"),
+    ]
+
+
+def factor_det(det: sp.Expr) -> sp.Expr:
+    """``det H`` in its shortest factored form (``m_2 a_1^2 a_2^2 (m_1 + m_2 \\sin^2\\theta_2)``): factored
+    as it is, and with every ``\\cos^2 x`` written ``1 - \\sin^2 x``; the model's form when neither is shorter."""
+    x = sp.Wild("x")
+    candidates = [det]
+    for form in (det, det.replace(sp.cos(x) ** 2, 1 - sp.sin(x) ** 2)):
+        try:
+            candidates.append(sp.factor(sp.expand(form)))
+        except (sp.PolynomialError, NotImplementedError):
+            continue
+    return min(candidates, key=sp.count_ops)  # min keeps the first of equally short forms
 
 
 def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
