@@ -83,20 +83,20 @@ def test_results_too_long_to_read_are_printed_as_the_recursive_program(monkeypat
     180 000 operations otherwise make 7 MB of Markdown."""
     import re
 
-    from tutgen.render import views
     from tutgen.render.markdown import render_markdown
+    from tutgen.render.sections import matrix
 
     _, d, _ = solved(str(ROOT / "specs" / "arms" / "scara.yaml"))
     assert d.program is not None
     whole = render_markdown(d)
     assert "intermediate quantities" not in whole and "H_{11} &= " in whole  # too wide for a matrix: by entry
 
-    monkeypatch.setattr(views, "PRINT_BUDGET", 0)
+    monkeypatch.setattr(matrix, "PRINT_BUDGET", 0)  # read where the matrix sections are built
     entries = render_markdown(d)
     assert "H_{11}" in entries and "H = \\begin{bmatrix}" not in entries and "intermediate" not in entries
     assert "too many to print here" in entries  # the Christoffel symbols are left to the JSON
 
-    monkeypatch.setattr(views, "PROGRAM_BUDGET", 0)
+    monkeypatch.setattr(matrix, "PROGRAM_BUDGET", 0)
     program = render_markdown(d)
     assert "intermediate quantities" in program
     defined: set[str] = set()

@@ -14,6 +14,7 @@ from sympy.printing.latex import LatexPrinter
 from tutgen.model.system import System
 from tutgen.render import order
 from tutgen.render.order import OrderedSum
+from tutgen.spec.units import Dimension, si_unit_latex
 
 SIGNIFICANT_FIGURES = 4
 #: sums up to this many operations are printed in a teacher's order (collecting a bigger one costs more
@@ -232,6 +233,7 @@ class TexPrinter:
         self.levels = order.levels_of(system)
         #: a rate's or an acceleration's coordinate index, so ẋ comes before θ̇ when x is the first coordinate
         self.coordinate_index = {s: i for i, c in enumerate(system.coordinates) for s in (c.q, c.qd, c.qdd)}
+        self.kinematic_symbols = set(self.coordinate_index)
         #: the spec's significant figures for decimals (None in the spec: the default, 4)
         self.figures = getattr(system, "significant_figures", None) or SIGNIFICANT_FIGURES
 
@@ -251,8 +253,14 @@ class TexPrinter:
         if _is_sum(expr) and sp.count_ops(expr) <= ORDER_BUDGET:
             if isinstance(expr, sp.Add):
                 expr = order.arranged(expr, self.levels)
-            else:  # a product keeps its factoring (m_2 l_2^2 (…)); its brackets are arranged
-                args = [order.arranged(f, self.levels) if isinstance(f, sp.Add) else f for f in expr.args]
+            else:  # a product keeps its factoring (m_2 l_2^2 (…)); its brackets are arranged, minus outside
+                args: list[sp.Basic] = []
+                for f in expr.args:
+                    if isinstance(f, sp.Add):
+                        sign, f = order.positive_lead(f)
+                        args += [sp.S.NegativeOne] if sign < 0 else []
+                        f = order.arranged(f, self.levels)
+                    args.append(f)
                 expr = sp.Mul(*args, evaluate=False)
         settings = {
             "symbol_names": self.names,
@@ -276,13 +284,62 @@ class TexPrinter:
             pieces.append(("- " if sign < 0 else ("+ " if pieces else "")) + text)
         return " ".join(pieces)
 
-    def equation(self, lhs: str, expr: object, rhs: str = "") -> str:
+    def equation(self, lhs: str, expr: object, rhs: str = "", dimension: Dimension | None = None) -> str:
         """``lhs = expr`` (or ``expr = rhs`` when ``lhs`` is empty) on one line: where it breaks when it is
-        too wide is decided by its typeset width when the display is laid out (tutgen.render.layout)."""
+        too wide is decided by its typeset width when the display is laid out (tutgen.render.layout).
+        With the result's ``dimension``, a numeric result carries its SI unit (:meth:`unit`)."""
         head = f"{lhs} = " if lhs else ""
         tail = f" = {rhs}" if rhs else ""
         small = isinstance(expr, sp.Expr) and sp.count_ops(expr) <= ORDER_BUDGET
-        return f"{head}{self.ordered(expr) if small else self(expr)}{tail}"
+        unit = self.unit(expr, dimension) if dimension is not None and not rhs else ""
+        return f"{head}{self.ordered(expr) if small else self(expr)}{unit}{tail}"
+
+    def unit(self, value: object, dimension: Dimension | None, torque: bool = False) -> str:
+        """The SI unit to print after a numeric result (``\\ \\mathrm{kg\\,m^{2}}``), or ``""``.
+
+        A result carries its unit when its dimension is known and it is numeric: no symbol in it but
+        the coordinates, their rates and accelerations, which are in SI units themselves (rad, m, per
+        second), so ``T = 2.925 \\dot\\theta^2`` is in J. A result with other symbols carries its
+        dimension in them and gets no unit; nor does 0, a dimensionless result, or a matrix of zeros.
+        Nor does anything of a problem whose kinetic energy is given as a formula (tutorial p10).
+        ``torque`` prints an energy as ``N\\,m`` (a generalized force of an angle)."""
+        if dimension is None or dimension.is_dimensionless or self.system.kinetic_energy is not None:
+            return ""  # (an energy the spec gives as a formula of plain numbers has no stated unit)
+        entries = list(value) if isinstance(value, sp.MatrixBase) else [value]
+        exprs = [sp.sympify(e) for e in entries]
+        if all(e == 0 for e in exprs):
+            return ""
+        if any(e.free_symbols - self.kinematic_symbols for e in exprs):
+            return ""
+        if all(e.is_Symbol or (e.is_Pow and e.base.is_Symbol) for e in exprs):
+            return ""  # θ̇ alone, say: nothing numeric to give a unit to
+        return f"\\ \\mathrm{{{si_unit_latex(dimension, torque)}}}"
+
+
+#: a document prints exact fractions only when every number its spec gives is an integer or a fraction
+#: with a denominator up to this (½, ⅓, ¾: l/2, m l²/12); one written as a decimal (0.45 m, 2.5 cm) is a
+#: measurement, and then every number of the document is a decimal (docs/typesetting.md, "Numbers")
+EXACT_DENOMINATOR = 12
+
+
+def is_decimal_document(system: System) -> bool:
+    """Whether a worked solution prints its numbers as decimals: some number the spec gives (a parameter's
+    value, a part's mass, size or place, a joint's offset) is not an integer or a short fraction."""
+    given: list[object] = [p.value for p in system.parameters if p.value is not None]
+    for body in system.bodies:
+        for part in body.parts:
+            given += [part.mass, part.density, *part.at]
+            for _, measure in part.dimensions:
+                given += list(measure) if isinstance(measure, tuple) else [measure]
+    for joint in system.joints:
+        given += [*joint.origin_offset, joint.offset]
+    for value in given:
+        if isinstance(value, sp.Basic):
+            if value.atoms(sp.Float):
+                return True
+            if any(r.q > EXACT_DENOMINATOR for r in value.atoms(sp.Rational)):
+                return True
+    return False
 
 
 def _dotted(latex: str, accent: str) -> str:

@@ -17,7 +17,7 @@ from tutgen.engine.derivation import Derivation
 from tutgen.figure.view import figure_view
 from tutgen.model.system import System
 from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, prose, rich, unit_tex
-from tutgen.render.printer import TexPrinter
+from tutgen.render.printer import TexPrinter, is_decimal_document
 from tutgen.render.sections.arm import arm_table
 from tutgen.render.sections.energy import energies
 from tutgen.render.sections.inertia import mass_properties
@@ -77,7 +77,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
     s = d.system
     tex = TexPrinter(s)
     num = d.numeric
-    if decimals and s.values:
+    if (decimals and s.values) or is_decimal_document(s):  # one style of numbers a document
 
         def num(expr: Any) -> Any:
             return all_decimals(d.numeric(expr))

@@ -8,7 +8,7 @@ from typing import Any
 import sympy as sp
 
 from tutgen.engine.derivation import Derivation
-from tutgen.model.system import Ask
+from tutgen.model.system import Ask, System
 from tutgen.render.blocks import (
     PRINT_BUDGET,
     PROGRAM_BUDGET,
@@ -24,6 +24,9 @@ from tutgen.render.blocks import (
 )
 from tutgen.render.layout import LINE_WIDTH_PT, tex_width
 from tutgen.render.printer import TexPrinter
+from tutgen.spec.units import DIMENSIONS, Dimension
+
+ENERGY, TIME = DIMENSIONS["energy"], DIMENSIONS["time"]
 
 
 def matrix_form(c: SolutionContext) -> dict[str, Any] | None:
@@ -41,18 +44,38 @@ def matrix_form(c: SolutionContext) -> dict[str, Any] | None:
     elif size > PRINT_BUDGET:
         sec["blocks"] += entry_by_entry(d, tex, num, Ask.MATRIX_FORM in s.ask)
     else:
-        sec["blocks"].append(display(f"H = {tex(num(d.mass_matrix))}"))
+        h = num(d.mass_matrix)
+        sec["blocks"].append(display(f"H = {tex(h)}{tex.unit(h, shared(inertia_dimensions(s)))}"))
     if Ask.MATRIX_FORM in s.ask and size <= PRINT_BUDGET:
-        sec["blocks"].append(
-            display(
-                f"C = {tex(num(d.coriolis_vector))},\\quad G = {tex(num(d.gravity_vector))},"
-                f"\\quad Q = {tex(num(d.generalized_forces))}"
-            )
-        )
+        forces, torque = force_dimensions(s)
+        c_vec, g_vec, q_vec = (num(v) for v in (d.coriolis_vector, d.gravity_vector, d.generalized_forces))
+        unit = shared(forces)
+        shown = [f"{n} = {tex(v)}{tex.unit(v, unit, torque)}" for n, v in (("C", c_vec), ("G", g_vec), ("Q", q_vec))]
+        sec["blocks"].append(display(",\\quad ".join(shown)))
         sec["blocks"] += assembled(c) + coriolis_matrix_blocks(c)
     if size <= PRINT_BUDGET:
         sec["blocks"] += determinant_blocks(c)
     return sec
+
+
+def inertia_dimensions(s: System) -> list[list[Dimension | None]]:
+    """The dimension of each H_ij: an energy over the dimensions of the rates q̇_i q̇_j (kg m² between
+    two angles, kg between two lengths, kg m between one of each); None where a coordinate's is unknown."""
+    rates = [q.si_dimension / TIME if q.si_dimension is not None else None for q in s.coordinates]
+    return [[ENERGY / (ri * rj) if ri is not None and rj is not None else None for rj in rates] for ri in rates]
+
+
+def force_dimensions(s: System) -> tuple[list[Dimension | None], bool]:
+    """The dimension of each C_i, G_i, Q_i (an energy over the coordinate's: N m for an angle, N for a
+    length), and whether they are all torques (printed N m rather than J)."""
+    dims = [ENERGY / q.si_dimension if q.si_dimension is not None else None for q in s.coordinates]
+    return dims, all(q.si_dimension is not None and q.si_dimension.is_dimensionless for q in s.coordinates)
+
+
+def shared(dims: list[Any]) -> Dimension | None:
+    """The one dimension of all the entries of a matrix (nested lists flattened), or None."""
+    flat = [x for row in dims for x in (row if isinstance(row, list) else [row])]
+    return flat[0] if flat and all(x is not None and x == flat[0] for x in flat) else None
 
 
 #: the assembled H q_ddot + C + G = Q and det H are printed only for results this short (operations)
@@ -178,14 +201,20 @@ def entry_by_entry(d: Derivation, tex: TexPrinter, numeric: Any, with_c_g: bool)
         return long_decimals(numeric(e))
 
     n = d.mass_matrix.shape[0]
+    h_dims = inertia_dimensions(d.system)
+    f_dims, _ = force_dimensions(d.system)
     blocks: list[Block] = [para(prose("$H$ is symmetric, $H_{ji} = H_{ij}$; its entries on and above the diagonal:"))]
     for i in range(n):
         for j in range(i, n):
-            blocks.append(display(tex.equation(f"H_{{{i + 1}{j + 1}}}", num(d.mass_matrix[i, j]))))
+            entry = num(d.mass_matrix[i, j])
+            blocks.append(display(tex.equation(f"H_{{{i + 1}{j + 1}}}", entry, dimension=h_dims[i][j])))
     if with_c_g:
+        angles = [q.si_dimension is not None and q.si_dimension.is_dimensionless for q in d.system.coordinates]
         for name, vec in (("C", d.coriolis_vector), ("G", d.gravity_vector), ("Q", d.generalized_forces)):
             for i in range(n):
-                blocks.append(display(tex.equation(f"{name}_{{{i + 1}}}", num(vec[i]))))
+                entry = num(vec[i])
+                unit = tex.unit(entry, f_dims[i], angles[i])
+                blocks.append(display(tex.equation(f"{name}_{{{i + 1}}}", entry) + unit))
     return blocks
 
 
