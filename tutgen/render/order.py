@@ -176,6 +176,8 @@ def _coefficient(coeffs: list[sp.Expr], level: int, levels: _Levels) -> Term:
     """A group's coefficient: the common factor in front, the rest arranged from ``level`` on, with a
     positive lead (``-(m_3 + m_4) g``, ``(m_1 + m_2) a_1^2 + m_2 a_2^2``)."""
     total = sp.factor_terms(sp.Add(*coeffs))
+    if _has_pythagoras(total):  # expanding may show sin² x + cos² x (a moment balance's l² θ̈ terms)
+        total = sp.factor_terms(sp.trigsimp(total))
     common, inner = sp.S.One, total
     if isinstance(total, sp.Mul):
         adds = [f for f in total.args if isinstance(f, sp.Add)]
@@ -189,6 +191,13 @@ def _coefficient(coeffs: list[sp.Expr], level: int, levels: _Levels) -> Term:
     if arranged and arranged[0][0] < 0:
         sign, arranged = -sign, [(-s, b) for s, b in arranged]
     return sign, _times(common, _plus(arranged)) if common != 1 else _plus(arranged)
+
+
+def _has_pythagoras(expr: sp.Expr) -> bool:
+    """Whether ``sin(x)**2`` and ``cos(x)**2`` of one argument both occur (cheap, before a trigsimp)."""
+    squares = [p for p in expr.atoms(sp.Pow) if p.exp == 2 and isinstance(p.base, (sp.sin, sp.cos))]
+    sines = {p.base.args[0] for p in squares if isinstance(p.base, sp.sin)}
+    return any(isinstance(p.base, sp.cos) and p.base.args[0] in sines for p in squares)
 
 
 def _times(coeff: sp.Expr, rest: sp.Expr) -> sp.Expr:

@@ -60,9 +60,9 @@ def arm_table(c: SolutionContext) -> dict[str, Any] | None:
     )
     if len(table.rows) <= FRAMES_LISTED:
         sec["blocks"].append(para(prose("The frame of each link, relative to the one before:")))
-        for i in range(len(table.rows)):
-            a_i = long_decimals(table.transform(i))
-            sec["blocks"].append(display(f"A_{{{i + 1}}} = {tex(a_i)}"))
+        frames = [f"A_{{{i + 1}}} = {tex(long_decimals(table.transform(i)))}" for i in range(len(table.rows))]
+        for k in range(0, len(frames), 2):  # two a line where they fit (the layout stacks them if not)
+            sec["blocks"].append(display(",\\quad ".join(frames[k : k + 2])))
     return sec
 
 
