@@ -28,11 +28,13 @@ def test_p03_equations_read_as_the_tutorial_prints_them() -> None:
     assert second == r"m_2 l \cos\theta\, \ddot{x} + m_2 l^{2} \ddot{\theta} + m_2 l g \sin\theta = \tau"
 
 
-def test_p03_kinetic_energy_has_the_half_in_front_and_squares_first() -> None:
+def test_p03_kinetic_energy_has_the_half_in_front_and_rates_in_coordinate_order() -> None:
+    """½(m_1+m_2)ẋ² first, the rates of a product in the order of the coordinates (the tutorial's m_2lẋθ̇),
+    and the rate products as the quadratic form ½ Σ H_ij q̇_i q̇_j is read row by row: ẋ², ẋθ̇, θ̇²."""
     energies = _boxed(P03, "Energies")
     assert (
-        r"T = \tfrac{1}{2} \left(m_1 + m_2\right) \dot{x}^{2} + \tfrac{1}{2} m_2 l^{2} \dot{\theta}^{2}"
-        r" + m_2 l \cos\theta\, \dot{\theta} \dot{x}"
+        r"T = \tfrac{1}{2} \left(m_1 + m_2\right) \dot{x}^{2} + m_2 l \cos\theta\, \dot{x} \dot{\theta}"
+        r" + \tfrac{1}{2} m_2 l^{2} \dot{\theta}^{2}"
     ) in energies
 
 

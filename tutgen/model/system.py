@@ -209,6 +209,48 @@ class Method(StrEnum):
 
 
 @dataclass(frozen=True)
+class DHRow:
+    """One row of an arm's Denavit–Hartenberg table as the spec wrote it (SI values; a joint's variable
+    is its coordinate's symbol, plus any constant offset)."""
+
+    link: str
+    theta: sp.Expr
+    d: sp.Expr
+    a: sp.Expr
+    alpha: sp.Expr
+
+
+@dataclass(frozen=True)
+class ArmTable:
+    """The `arm:` table of a spec, kept for printing: its links are already bodies and joints of the
+    system. ``convention`` is "standard" (Spong, Paul: A_i = Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i)) or
+    "modified" (Craig: A_i = Rx(α_{i-1}) Tx(a_{i-1}) Rz(θ_i) Tz(d_i), the row holding α_{i-1}, a_{i-1})."""
+
+    convention: str
+    rows: tuple[DHRow, ...]
+
+    def transform(self, i: int) -> sp.ImmutableMatrix:
+        """The homogeneous transform of row ``i`` (0-based), frame i-1 -> frame i, by the convention."""
+        row = self.rows[i]
+        ct, st, ca, sa = sp.cos(row.theta), sp.sin(row.theta), sp.cos(row.alpha), sp.sin(row.alpha)
+        if self.convention == "standard":
+            rows = [
+                [ct, -st * ca, st * sa, row.a * ct],
+                [st, ct * ca, -ct * sa, row.a * st],
+                [0, sa, ca, row.d],
+                [0, 0, 0, 1],
+            ]
+        else:
+            rows = [
+                [ct, -st, 0, row.a],
+                [st * ca, ct * ca, -sa, -sa * row.d],
+                [st * sa, ct * sa, ca, ca * row.d],
+                [0, 0, 0, 1],
+            ]
+        return sp.ImmutableMatrix(rows)
+
+
+@dataclass(frozen=True)
 class System:
     """A validated problem, ready to derive."""
 
@@ -235,6 +277,7 @@ class System:
     figure: FigureConfig | None = None  # the spec's `figure:` section (drawing configuration, own picture)
     simulation: Simulation | None = None  # the spec's `simulate:` section (tutgen simulate)
     marking: Marking | None = None  # the spec's `marking:` section: what `tutgen check` marks
+    arm: ArmTable | None = None  # the spec's `arm:` table as written (its links are in bodies and joints)
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

@@ -57,6 +57,7 @@ _SPACES = {
 }
 _OPERATORS = {"sin", "cos", "tan", "cot", "sec", "csc", "det", "log", "exp", "ln", "max", "min"}
 _ZERO = {
+    "hline",
     "left",
     "right",
     "textstyle",
@@ -213,7 +214,11 @@ def tex_width(tex: str, scale: float = 1.0, display: bool = True) -> float:
             elif name == "begin":
                 env = _group(cur)
                 body = _environment(cur, env)
-                if env.endswith("matrix"):
+                if env == "array":  # its column specification first, then cells as a matrix's
+                    spec = _Cursor(body)
+                    _group(spec)
+                    total += _matrix_width(body[spec.pos :], scale)
+                elif env.endswith("matrix"):
                     total += _matrix_width(body, scale)
                 elif env in ("aligned", "gathered", "split", "align*", "gather*"):
                     total += max((tex_width(r, scale, True) for r in split_top(body, "\\\\")), default=0.0)
@@ -387,8 +392,8 @@ def _indexed(name: str, index: str) -> str:
 
 
 def _bracket(term: str) -> tuple[str, str, str] | None:
-    """The largest ``\\left( … \\right)`` group of a term that is not inside braces (a fraction's parts,
-    a script): (before, inside, after)."""
+    """The largest ``\\left( … \\right)`` (or ``\\left[ … \\right]``) group of a term that is not inside
+    braces (a fraction's parts, a script): (before and its opening, inside, its closing and after)."""
     best: tuple[str, str, str] | None = None
     depth, braces, start = 0, 0, -1
     i = 0
@@ -403,13 +408,14 @@ def _bracket(term: str) -> tuple[str, str, str] | None:
             continue
         if term.startswith("\\left", i) or term.startswith("\\right", i):
             opening = term.startswith("\\left", i)
-            if opening and braces == 0 and depth == 0 and term.startswith("\\left(", i):
+            if opening and braces == 0 and depth == 0 and term.startswith(("\\left(", "\\left["), i):
                 start = i
             depth += 1 if opening else -1
-            if not opening and depth == 0 and braces == 0 and start >= 0 and term.startswith("\\right)", i):
+            closing = term.startswith(("\\right)", "\\right]"), i)
+            if not opening and depth == 0 and braces == 0 and start >= 0 and closing:
                 inner = term[start + 6 : i]
                 if best is None or len(inner) > len(best[1]):
-                    best = (term[:start], inner, term[i + 7 :])
+                    best = (term[:start] + term[start + 5], inner, term[i + 6 :])
                 start = -1
             i += 6 if opening else 7
             continue
@@ -479,11 +485,12 @@ def _break_term(term: str, first: float, rest: float) -> list[str]:
     inner_terms = terms(inner)
     if len(inner_terms) < 2:
         return [term]
-    size = "\\Bigl(" if "\\frac" in inner else "\\bigl("
-    close = "\\Bigr)" if size == "\\Bigl(" else "\\bigr)"
-    head = f"{before}{size}"
+    before, opening = before[:-1], before[-1]  # ( or [, and after starts with its partner
+    closing, after = after[0], after[1:]
+    big = "Big" if "\\frac" in inner else "big"
+    head = f"{before}\\{big}l{opening}"
     pieces = [head + inner_terms[0], *inner_terms[1:]]
-    pieces[-1] = pieces[-1] + close + after
+    pieces[-1] = pieces[-1] + f"\\{big}r{closing}" + after
     lines = _fill(pieces, first, rest - _EM)
     return [lines[0], *("\\quad " + ln for ln in lines[1:])]
 
@@ -504,6 +511,10 @@ def break_equation(tex: str, width: float = LINE_WIDTH_PT, column: float | None 
             rhs_terms = terms(rhs)
             pieces += [f"= {rhs_terms[0]}", *rhs_terms[1:]]
         lines = _fill(pieces, width, width - _EM)
+        if len(lines) > 1 and len(pieces) > 2 and lines[-1] == pieces[-1] and pieces[-1].startswith("= "):
+            # never "= τ_1" alone on the last row: the last term goes down with it
+            pieces = [*pieces[:-2], f"{pieces[-2]} {pieces[-1]}"]
+            lines = _fill(pieces, width, width - _EM)
         return ["&" + lines[0], *(f"&\\quad {{}}{ln}" for ln in lines[1:])]
     rows: list[str] = []
     start = (own if column is None else column) + _REL

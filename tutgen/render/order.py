@@ -15,6 +15,7 @@ inputs on the right of ``=``.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from enum import IntEnum
 
 import sympy as sp
@@ -84,70 +85,168 @@ def positive_lead(expr: sp.Expr) -> tuple[int, sp.Expr]:
 Term = tuple[int, sp.Expr]  # (sign, body): the printed term is ``- body`` when sign is negative
 
 
-def _collected(terms: list[sp.Expr], coordinate_symbols: set[sp.Basic], rates: list[sp.Basic]) -> list[Term]:
-    """Terms gathered over what they share with the coordinates (``a g m_1 \\cos q + a g m_2 \\cos q`` ->
-    ``(m_1 + m_2) a g \\cos q``), each coefficient factored with a positive lead; groups with the squares
-    of the rates first, then their products, by the order of the coordinates (``rates``)."""
+class OrderedSum(sp.Add):
+    """A sum whose terms are printed in the order of its arguments (tutgen.render.printer does not sort it):
+    built unevaluated, ``OrderedSum(*terms, evaluate=False)``; its value is that of the plain sum."""
+
+
+def _plus(terms: list[Term]) -> sp.Expr:
+    """The terms as one sum that prints in their order (a negative body as ``-1 · body``, unevaluated, so
+    that sympy does not distribute the minus over a bracket)."""
+    parts = [body if sign > 0 else sp.Mul(sp.S.NegativeOne, body, evaluate=False) for sign, body in terms]
+    return parts[0] if len(parts) == 1 else OrderedSum(*parts, evaluate=False)
+
+
+@dataclass(frozen=True)
+class _Levels:
+    """What a term is gathered over, level by level: its rates and accelerations (0), its coordinates (1),
+    its data other than masses and inertias (2: lengths, g); what is left are masses, inertias, numbers."""
+
+    roles: dict[sp.Basic, Role]
+    accelerations: tuple[sp.Basic, ...]
+    rates: tuple[sp.Basic, ...]
+    coordinates: tuple[sp.Basic, ...]
+
+    def takes(self, level: int, factor: sp.Basic) -> bool:
+        if level == 0:
+            return bool(factor.free_symbols & {*self.rates, *self.accelerations})
+        if level == 1:
+            return bool(factor.free_symbols & set(self.coordinates))
+        return factor_role(factor, self.roles) in (Role.DATA, Role.GRAVITY)
+
+    def key(self, level: int, part: sp.Expr) -> tuple[object, ...]:
+        """Where a group comes at its level: accelerations by coordinate, then rate products by their
+        coordinates' indices (θ̇₁², θ̇₁θ̇₂, θ̇₂², as H's entries are read), then what has no rates; constants
+        before the coordinates' functions, those by their first coordinate; data by name, masses last."""
+        free = part.free_symbols
+        if level == 0:
+            if part == 1:
+                return (2,)
+            acc = [i for i, s in enumerate(self.accelerations) if s in free]
+            if acc:
+                return (0, tuple(acc))
+            used: list[int] = []
+            for f in sp.Mul.make_args(part):
+                base, exp = f.as_base_exp()
+                if base in self.rates and exp.is_Integer:
+                    used += [self.rates.index(base)] * int(exp)
+                else:
+                    used += [i for i, s in enumerate(self.rates) if s in f.free_symbols]
+            return (1, tuple(sorted(used)))
+        if level == 1:
+            if part == 1:
+                return (0,)
+            first = min((i for i, s in enumerate(self.coordinates) if s in free), default=0)
+            return (1, first, sp.count_ops(part), sp.default_sort_key(part))
+        return (1,) if part == 1 else (0, sp.default_sort_key(part))
+
+
+def _split(term: sp.Expr, level: int, levels: _Levels) -> tuple[sp.Expr, sp.Expr]:
+    """(the part of a product the level gathers over, the coefficient)."""
+    part, coeff = sp.S.One, sp.S.One
+    for f in sp.Mul.make_args(term):
+        if levels.takes(level, f):
+            part *= f
+        else:
+            coeff *= f
+    return part, coeff
+
+
+def _arrange(terms: list[sp.Expr], level: int, levels: _Levels) -> list[Term]:
+    """Terms (of an expanded sum) gathered over what they share at ``level`` and the levels below, each
+    group's coefficient one bracket with a positive lead, groups in the level's order."""
+    if level > 2:  # masses, inertias and numbers: each term on its own
+        return sorted((positive_lead(t) for t in terms), key=lambda t: sp.default_sort_key(t[1]))
     groups: dict[sp.Expr, list[sp.Expr]] = {}
     for t in terms:
-        coeff, rest = sp.S.One, sp.S.One
-        for f in sp.Mul.make_args(t):
-            if f.free_symbols & coordinate_symbols:
-                rest *= f
-            else:
-                coeff *= f
-        groups.setdefault(rest, []).append(coeff)
-    order_of = {r: i for i, r in enumerate(rates)}
+        part, coeff = _split(t, level, levels)
+        groups.setdefault(part, []).append(coeff)
     out: list[Term] = []
-    for rest, coeffs in sorted(groups.items(), key=lambda kv: _rate_key(kv[0], order_of)):
-        sign, body = positive_lead(sp.factor_terms(sp.Add(*coeffs)))
-        if rest == 1 and isinstance(body, sp.Add):  # terms free of the coordinates share nothing: one by one
-            out += [positive_lead(c) for c in coeffs]  # (a sum's sign taken out would need a bracket)
+    for part in sorted(groups, key=lambda p: levels.key(level, p)):
+        coeffs = groups[part]
+        if part == 1:
+            out += _arrange(coeffs, level + 1, levels)
             continue
-        out.append((sign, _times(body, rest)))
+        sign, body = _coefficient(coeffs, level + 1, levels)
+        out.append((sign, _times(body, part)))
     return out
 
 
-def _rate_key(rest: sp.Expr, order_of: dict[sp.Basic, int]) -> tuple[int, tuple[int, ...]]:
-    """Squares before products, each by the coordinates' order; terms without rates keep their place."""
-    used = sorted(order_of[s] for s in rest.free_symbols if s in order_of)
-    return (len(used), tuple(used))
+def _coefficient(coeffs: list[sp.Expr], level: int, levels: _Levels) -> Term:
+    """A group's coefficient: the common factor in front, the rest arranged from ``level`` on, with a
+    positive lead (``-(m_3 + m_4) g``, ``(m_1 + m_2) a_1^2 + m_2 a_2^2``)."""
+    total = sp.factor_terms(sp.Add(*coeffs))
+    if _has_pythagoras(total):  # expanding may show sin² x + cos² x (a moment balance's l² θ̈ terms)
+        total = sp.factor_terms(sp.trigsimp(total))
+    common, inner = sp.S.One, total
+    if isinstance(total, sp.Mul):
+        adds = [f for f in total.args if isinstance(f, sp.Add)]
+        if len(adds) == 1:
+            inner = adds[0]
+            common = sp.Mul(*(f for f in total.args if f is not inner))
+    if not isinstance(inner, sp.Add):
+        return positive_lead(total)
+    arranged = _arrange(list(sp.Add.make_args(inner)), level, levels)
+    sign, common = positive_lead(common)
+    if arranged and arranged[0][0] < 0:
+        sign, arranged = -sign, [(-s, b) for s, b in arranged]
+    return sign, _times(common, _plus(arranged)) if common != 1 else _plus(arranged)
+
+
+def _has_pythagoras(expr: sp.Expr) -> bool:
+    """Whether ``sin(x)**2`` and ``cos(x)**2`` of one argument both occur (cheap, before a trigsimp)."""
+    squares = [p for p in expr.atoms(sp.Pow) if p.exp == 2 and isinstance(p.base, (sp.sin, sp.cos))]
+    sines = {p.base.args[0] for p in squares if isinstance(p.base, sp.sin)}
+    return any(isinstance(p.base, sp.cos) and p.base.args[0] in sines for p in squares)
 
 
 def _times(coeff: sp.Expr, rest: sp.Expr) -> sp.Expr:
     """``coeff · rest`` without sympy distributing a number over a bracket."""
     if rest == 1:
         return coeff
-    if isinstance(coeff, sp.Add):
+    if coeff == 1:
+        return rest
+    if isinstance(coeff, sp.Add) or isinstance(rest, sp.Add):
         return sp.Mul(coeff, rest, evaluate=False)
     return coeff * rest
 
 
-def equation_terms(expr: sp.Expr, system: System) -> list[Term] | None:
-    """The terms of an equation of motion's left side in a teacher's order: the accelerations in the
-    order of the coordinates (each with its collected coefficient), the velocity products, the rest.
-    ``None`` when the expression is not a sum worth ordering."""
+def levels_of(system: System) -> _Levels:
+    coordinates = system.coordinates
+    return _Levels(
+        symbol_roles(system),
+        tuple(c.qdd for c in coordinates),
+        tuple(c.qd for c in coordinates),
+        tuple(c.q for c in coordinates),
+    )
+
+
+def arranged_terms(expr: sp.Expr, levels: _Levels) -> list[Term] | None:
+    """The terms of a sum in a teacher's order (docs/typesetting.md): the accelerations in the order of
+    the coordinates, each with its collected coefficient; the rate products; the rest, gathered over the
+    coordinates' functions (a trigonometric factor, a spring's stretch), then over the data (``(m_1 +
+    m_2) a_1^2``). ``None`` when the expression is not a sum worth ordering or the arranged terms would
+    not keep its value."""
     expanded = sp.expand(expr)
     if not isinstance(expanded, sp.Add):
         return None
-    coordinates = system.coordinates
-    symbols = {s for c in coordinates for s in (c.q, c.qd, c.qdd)}
-    ordered: list[Term] = []
-    rest = expanded
-    for c in coordinates:
-        coeff = rest.coeff(c.qdd)
-        if coeff == 0:
-            continue
-        rest = sp.expand(rest - coeff * c.qdd)
-        sign, body = positive_lead(sp.factor_terms(coeff))
-        ordered.append((sign, _times(body, c.qdd)))
-    rates = [c.qd for c in coordinates]
-    parts = sp.Add.make_args(rest) if rest != 0 else ()
-    velocity = [t for t in parts if t.free_symbols & set(rates)]
-    others = [t for t in parts if not t.free_symbols & set(rates)]
-    # velocity terms are gathered over their rates (a bracketed coefficient per rate product), the others
-    # over everything they share with the coordinates (a trigonometric factor, a spring's stretch)
-    ordered += _collected(velocity, set(rates), rates) + _collected(others, symbols, rates)
+    ordered = _arrange(list(sp.Add.make_args(expanded)), 0, levels)
     if sp.expand(sp.Add(*(sign * body for sign, body in ordered)) - expr) != 0:  # the printed form keeps the value
         return None
     return ordered
+
+
+def arranged(expr: sp.Expr, levels: _Levels) -> sp.Expr:
+    """``expr`` as a sum that prints in a teacher's order, or ``expr`` itself when that is much longer:
+    an arranged form that has a quarter more operations than the model's (``m_2 (l_1 + l_2 \\cos q)^2`` expanded)
+    is not used."""
+    found = arranged_terms(expr, levels)
+    if not found:
+        return expr
+    result = _plus(found)
+    return result if sp.count_ops(result) <= 1.25 * sp.count_ops(expr) + 2 else expr
+
+
+def equation_terms(expr: sp.Expr, system: System) -> list[Term] | None:
+    """The terms of an equation of motion's left side in a teacher's order (:func:`arranged_terms`)."""
+    return arranged_terms(expr, levels_of(system))

@@ -13,6 +13,8 @@ from sympy.printing.latex import LatexPrinter
 
 from tutgen.model.system import System
 from tutgen.render import order
+from tutgen.render.order import OrderedSum
+from tutgen.spec.units import Dimension, si_unit_latex
 
 SIGNIFICANT_FIGURES = 4
 #: sums up to this many operations are printed in a teacher's order (collecting a bigger one costs more
@@ -50,6 +52,7 @@ class _Printer(LatexPrinter):
     _default_settings: ClassVar[dict[str, Any]] = {
         **LatexPrinter._default_settings,
         "roles": None,
+        "coordinate_index": None,
         "figures": SIGNIFICANT_FIGURES,
     }
 
@@ -60,7 +63,8 @@ class _Printer(LatexPrinter):
         """The terms of a sum in sympy's lex order (an ordered equation is printed term by term instead),
         each term's sign as printed: a product whose bracket gave up its minus sign prints a minus."""
         out = ""
-        for i, term in enumerate(self._as_ordered_terms(expr, order="lex")):
+        given = isinstance(expr, OrderedSum)  # arranged by tutgen.render.order: printed as it is
+        for i, term in enumerate(expr.args if given else self._as_ordered_terms(expr, order="lex")):
             piece = str(self._print(term))
             if self._needs_add_brackets(term):
                 piece = f"\\left({piece}\\right)"
@@ -96,13 +100,27 @@ class _Printer(LatexPrinter):
         sign = -1 if coeff.is_negative else 1
         coeff = abs(coeff)
         factors: list[sp.Basic] = []
-        for f in sp.Mul.make_args(rest):
-            if isinstance(f, sp.Add) and f.could_extract_minus_sign():
+        for f in _flat_factors(rest):
+            if f.is_Number:  # a number inside an unevaluated product (an arranged term's) joins the lead
+                coeff *= abs(f)
+                sign = -sign if f.is_negative else sign
+                continue
+            # (an arranged sum has a positive lead already, and negating it would lose its order)
+            if isinstance(f, sp.Add) and not isinstance(f, OrderedSum) and f.could_extract_minus_sign():
                 f, sign = -f, -sign
             factors.append(f)
-        # a named function of a statement's maths (H(q) in "H(q) q_ddot") leads, as it is written
+        if not factors:
+            return ("- " if sign < 0 else "") + str(self._print(coeff))
+        index = self._settings["coordinate_index"] or {}
+        # a named function of a statement's maths (H(q) in "H(q) q_ddot") leads, as it is written; rates
+        # and accelerations by the order of their coordinates (m_2 l \dot x \dot\theta)
         factors.sort(
-            key=lambda f: (not isinstance(f, AppliedUndef), order.factor_role(f, roles), sp.default_sort_key(f))
+            key=lambda f: (
+                not isinstance(f, AppliedUndef),
+                order.factor_role(f, roles),
+                index.get(f.as_base_exp()[0], -1),
+                sp.default_sort_key(f),
+            )
         )
         head = ""
         if coeff.is_Rational and not coeff.is_Integer and coeff.q <= 12 and abs(coeff.p) <= 12:
@@ -116,9 +134,55 @@ class _Printer(LatexPrinter):
             text = self._print(body) if not isinstance(body, sp.Mul) else str(super()._print_Mul(body))
         finally:
             self._settings["order"] = saved
+        if isinstance(body, sp.Add) and (head or sign < 0):
+            # a lone bracket after ½ or a minus keeps its brackets: ¼(a + b), −(a + b), never ¼ a + b
+            text = f"\\left({text}\\right)"
         return ("- " if sign < 0 else "") + head + text
 
 
+def square_outer(tex: str) -> str:
+    """A bracket that holds a bracket of its own becomes a square one, as the tutorial writes
+    ``[(m_1 + m_2) a_1^2 + m_2 a_2^2] \\ddot\\theta_1``. A function's own ``{\\left(x \\right)}`` is not a
+    bracket here (it becomes ``\\sin x``, :func:`tidy_functions`)."""
+    out: list[str] = []
+    pos = 0
+    while (m := _INNER_BRACKET.search(tex, pos)) is not None:
+        depth, i = 0, m.start()
+        while i < len(tex):
+            if tex.startswith("\\left", i) and not tex[i + 5 : i + 6].isalpha():
+                depth += 1
+            elif tex.startswith("\\right", i) and not tex[i + 6 : i + 7].isalpha():
+                depth -= 1
+                if depth == 0:
+                    break
+            i += 1
+        inner = tex[m.end() : i]
+        if i >= len(tex) or not tex.startswith("\\right)", i) or not _INNER_BRACKET.search(inner):
+            out.append(tex[pos : m.end()])
+            pos = m.end()
+            continue
+        out.append(tex[pos : m.start()] + "\\left[" + square_outer(inner) + "\\right]")
+        pos = i + len("\\right)")
+    out.append(tex[pos:])
+    return "".join(out)
+
+
+def _is_sum(expr: object) -> bool:
+    """A sum, or a product with a sum in it (``¼(a + b)``): what a teacher's order applies to."""
+    if isinstance(expr, sp.Add):
+        return True
+    return isinstance(expr, sp.Mul) and any(isinstance(f, sp.Add) for f in expr.args)
+
+
+def _flat_factors(expr: sp.Basic) -> list[sp.Basic]:
+    """The factors of a product, products inside it (an arranged term's, unevaluated) opened."""
+    out: list[sp.Basic] = []
+    for f in sp.Mul.make_args(expr):
+        out += _flat_factors(f) if isinstance(f, sp.Mul) else [f]
+    return out
+
+
+_INNER_BRACKET = re.compile(r"(?<!\{)\\left\(")
 _TRIG = re.compile(r"\\(sin|cos|tan|cot|sec|csc)(\^\{[^{}]*\})?\{\\left\(")
 _ATOM = re.compile(r"^(\\[A-Za-z]+|[A-Za-z])(_\{[A-Za-z0-9]+\}|_[A-Za-z0-9])?$")
 
@@ -166,6 +230,10 @@ class TexPrinter:
         self.names = names
         self.system = system
         self.roles = order.symbol_roles(system)
+        self.levels = order.levels_of(system)
+        #: a rate's or an acceleration's coordinate index, so ẋ comes before θ̇ when x is the first coordinate
+        self.coordinate_index = {s: i for i, c in enumerate(system.coordinates) for s in (c.q, c.qd, c.qdd)}
+        self.kinematic_symbols = set(self.coordinate_index)
         #: the spec's significant figures for decimals (None in the spec: the default, 4)
         self.figures = getattr(system, "significant_figures", None) or SIGNIFICANT_FIGURES
 
@@ -182,13 +250,30 @@ class TexPrinter:
             return r"\begin{bmatrix}" + r" \\ ".join(rows) + r"\end{bmatrix}"
         if isinstance(expr, float):
             expr = sp.Float(expr)
-        settings = {"symbol_names": self.names, "roles": self.roles, "figures": self.figures}
-        return tidy_functions(_Printer(settings).doprint(expr))
+        if _is_sum(expr) and sp.count_ops(expr) <= ORDER_BUDGET:
+            if isinstance(expr, sp.Add):
+                expr = order.arranged(expr, self.levels)
+            else:  # a product keeps its factoring (m_2 l_2^2 (…)); its brackets are arranged, minus outside
+                args: list[sp.Basic] = []
+                for f in expr.args:
+                    if isinstance(f, sp.Add):
+                        sign, f = order.positive_lead(f)
+                        args += [sp.S.NegativeOne] if sign < 0 else []
+                        f = order.arranged(f, self.levels)
+                    args.append(f)
+                expr = sp.Mul(*args, evaluate=False)
+        settings = {
+            "symbol_names": self.names,
+            "roles": self.roles,
+            "coordinate_index": self.coordinate_index,
+            "figures": self.figures,
+        }
+        return tidy_functions(square_outer(_Printer(settings).doprint(expr)))
 
     def ordered(self, expr: sp.Expr) -> str:
         """An equation of motion's side as a teacher writes it (tutgen.render.order.equation_terms):
         accelerations in coordinate order, velocity products, the rest; each bracket with a positive lead."""
-        found = order.equation_terms(expr, self.system) if isinstance(expr, sp.Expr) else None
+        found = order.arranged_terms(expr, self.levels) if isinstance(expr, sp.Expr) else None
         if not found:
             return self(expr)
         pieces: list[str] = []
@@ -199,13 +284,62 @@ class TexPrinter:
             pieces.append(("- " if sign < 0 else ("+ " if pieces else "")) + text)
         return " ".join(pieces)
 
-    def equation(self, lhs: str, expr: object, rhs: str = "") -> str:
+    def equation(self, lhs: str, expr: object, rhs: str = "", dimension: Dimension | None = None) -> str:
         """``lhs = expr`` (or ``expr = rhs`` when ``lhs`` is empty) on one line: where it breaks when it is
-        too wide is decided by its typeset width when the display is laid out (tutgen.render.layout)."""
+        too wide is decided by its typeset width when the display is laid out (tutgen.render.layout).
+        With the result's ``dimension``, a numeric result carries its SI unit (:meth:`unit`)."""
         head = f"{lhs} = " if lhs else ""
         tail = f" = {rhs}" if rhs else ""
         small = isinstance(expr, sp.Expr) and sp.count_ops(expr) <= ORDER_BUDGET
-        return f"{head}{self.ordered(expr) if small else self(expr)}{tail}"
+        unit = self.unit(expr, dimension) if dimension is not None and not rhs else ""
+        return f"{head}{self.ordered(expr) if small else self(expr)}{unit}{tail}"
+
+    def unit(self, value: object, dimension: Dimension | None, torque: bool = False) -> str:
+        """The SI unit to print after a numeric result (``\\ \\mathrm{kg\\,m^{2}}``), or ``""``.
+
+        A result carries its unit when its dimension is known and it is numeric: no symbol in it but
+        the coordinates, their rates and accelerations, which are in SI units themselves (rad, m, per
+        second), so ``T = 2.925 \\dot\\theta^2`` is in J. A result with other symbols carries its
+        dimension in them and gets no unit; nor does 0, a dimensionless result, or a matrix of zeros.
+        Nor does anything of a problem whose kinetic energy is given as a formula (tutorial p10).
+        ``torque`` prints an energy as ``N\\,m`` (a generalized force of an angle)."""
+        if dimension is None or dimension.is_dimensionless or self.system.kinetic_energy is not None:
+            return ""  # (an energy the spec gives as a formula of plain numbers has no stated unit)
+        entries = list(value) if isinstance(value, sp.MatrixBase) else [value]
+        exprs = [sp.sympify(e) for e in entries]
+        if all(e == 0 for e in exprs):
+            return ""
+        if any(e.free_symbols - self.kinematic_symbols for e in exprs):
+            return ""
+        if all(e.is_Symbol or (e.is_Pow and e.base.is_Symbol) for e in exprs):
+            return ""  # θ̇ alone, say: nothing numeric to give a unit to
+        return f"\\ \\mathrm{{{si_unit_latex(dimension, torque)}}}"
+
+
+#: a document prints exact fractions only when every number its spec gives is an integer or a fraction
+#: with a denominator up to this (½, ⅓, ¾: l/2, m l²/12); one written as a decimal (0.45 m, 2.5 cm) is a
+#: measurement, and then every number of the document is a decimal (docs/typesetting.md, "Numbers")
+EXACT_DENOMINATOR = 12
+
+
+def is_decimal_document(system: System) -> bool:
+    """Whether a worked solution prints its numbers as decimals: some number the spec gives (a parameter's
+    value, a part's mass, size or place, a joint's offset) is not an integer or a short fraction."""
+    given: list[object] = [p.value for p in system.parameters if p.value is not None]
+    for body in system.bodies:
+        for part in body.parts:
+            given += [part.mass, part.density, *part.at]
+            for _, measure in part.dimensions:
+                given += list(measure) if isinstance(measure, tuple) else [measure]
+    for joint in system.joints:
+        given += [*joint.origin_offset, joint.offset]
+    for value in given:
+        if isinstance(value, sp.Basic):
+            if value.atoms(sp.Float):
+                return True
+            if any(r.q > EXACT_DENOMINATOR for r in value.atoms(sp.Rational)):
+                return True
+    return False
 
 
 def _dotted(latex: str, accent: str) -> str:

@@ -19,7 +19,8 @@ from tutgen.engine.steps import StepKind
 from tutgen.figure.view import figure_view
 from tutgen.model.system import System
 from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, prose, rich, unit_tex
-from tutgen.render.printer import TexPrinter
+from tutgen.render.printer import TexPrinter, is_decimal_document
+from tutgen.render.sections.arm import arm_table
 from tutgen.render.sections.energy import energies
 from tutgen.render.sections.inertia import mass_properties
 from tutgen.render.sections.kinematics import kinematics
@@ -33,37 +34,38 @@ __all__ = ["BUILDERS", "coordinate_items", "given_items", "prose", "rich", "sect
 
 Builder = Callable[[SolutionContext], dict[str, Any] | None]
 
-#: the section builder of each kind of step; kinds that share a builder (T, U and L: the energies) are
-#: one section, placed where the first of them is. Each returns its section, or None when the
-#: derivation has nothing to show (a lone point mass has no inertia to tabulate)
-BUILDERS: dict[StepKind, Builder] = {
-    StepKind.INERTIA: mass_properties,
-    StepKind.KINEMATICS: kinematics,
-    StepKind.KINETIC_ENERGY: energies,
-    StepKind.POTENTIAL_ENERGY: energies,
-    StepKind.LAGRANGIAN: energies,
-    StepKind.LAGRANGE_EQUATIONS: lagrange_equations,
-    StepKind.NEWTON_EULER: newton_euler,
-    StepKind.EQUATIONS_OF_MOTION: equations_of_motion,
-    StepKind.MASS_MATRIX: matrix_form,
-    StepKind.MATRIX_FORM: matrix_form,
-    StepKind.MASS_MATRIX_DERIVATIVES: christoffel_symbols,
-    StepKind.CHRISTOFFEL: christoffel_symbols,
+#: the section builders of each kind of step, in order; kinds that share a builder (T, U and L: the
+#: energies) are one section, placed where the first of them is. Each returns its section, or None when
+#: the derivation has nothing to show (a lone point mass has no inertia to tabulate, a system that is not
+#: an `arm:` has no DH table). An arm's DH table follows its kinematics, or comes before H without them.
+BUILDERS: dict[StepKind, tuple[Builder, ...]] = {
+    StepKind.INERTIA: (mass_properties,),
+    StepKind.KINEMATICS: (kinematics, arm_table),
+    StepKind.KINETIC_ENERGY: (arm_table, energies),
+    StepKind.POTENTIAL_ENERGY: (energies,),
+    StepKind.LAGRANGIAN: (energies,),
+    StepKind.LAGRANGE_EQUATIONS: (arm_table, lagrange_equations),
+    StepKind.NEWTON_EULER: (newton_euler,),
+    StepKind.EQUATIONS_OF_MOTION: (arm_table, equations_of_motion),
+    StepKind.MASS_MATRIX: (arm_table, matrix_form),
+    StepKind.MATRIX_FORM: (arm_table, matrix_form),
+    StepKind.MASS_MATRIX_DERIVATIVES: (christoffel_symbols,),
+    StepKind.CHRISTOFFEL: (christoffel_symbols,),
 }
 
 
 def sections(context: SolutionContext) -> list[dict[str, Any]]:
-    """The sections of the worked solution: the derivation's steps in order, each kind by its builder,
+    """The sections of the worked solution: the derivation's steps in order, each kind by its builders,
     each builder once."""
     built: list[Builder] = []
     out: list[dict[str, Any]] = []
     for step in context.d.steps:
-        build = BUILDERS[step.kind]
-        if build in built:
-            continue
-        built.append(build)
-        if (sec := build(context)) is not None:
-            out.append(sec)
+        for build in BUILDERS[step.kind]:
+            if build in built:
+                continue
+            built.append(build)
+            if (sec := build(context)) is not None:
+                out.append(sec)
     return out
 
 
@@ -100,7 +102,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
     s = d.system
     tex = TexPrinter(s)
     num = d.numeric
-    if decimals and s.values:
+    if (decimals and s.values) or is_decimal_document(s):  # one style of numbers a document
 
         def num(expr: Any) -> Any:
             return all_decimals(d.numeric(expr))

@@ -42,6 +42,7 @@ __all__ = [
     "dimension_of",
     "parse_quantity",
     "parse_unit",
+    "si_unit_latex",
 ]
 
 
@@ -576,3 +577,47 @@ def decimal_text(x: sp.Expr) -> str:
     whole, frac = divmod(scaled, 10**digits)
     text = f"{whole}.{frac:0{digits}d}".rstrip("0").rstrip(".")
     return ("-" if r.p < 0 else "") + text
+
+
+# ---------------------------------------------------------------------------------------------
+# SI units of results (for the worked solution: J_xx = 9.59 x 10^-3 kg m^2, T = 2.925 theta_dot^2 J)
+# ---------------------------------------------------------------------------------------------
+
+#: the named SI units a result is printed with, by dimension; an energy is printed in J, and a
+#: generalized force of an angle (a torque, the same dimension) in N m: see :func:`si_unit_latex`
+_NAMED_UNITS: Mapping[Dimension, str] = MappingProxyType(
+    {
+        _MASS: "kg",
+        _LENGTH: "m",
+        _TIME: "s",
+        _FORCE: "N",
+        _ENERGY: "J",
+        Dimension(1, 2, -3): "W",
+        Dimension(1, -1, -2): "Pa",
+    }
+)
+
+
+def si_unit_latex(dimension: Dimension, torque: bool = False) -> str:
+    """The SI unit of a dimension as the body of ``\\mathrm{…}``: a named unit where there is one
+    (``N``, ``J``, ``kg``; ``N\\,m`` for an energy that is a torque), else the base units with their
+    powers, ``kg\\,m^{2}``, ``m^{3}``, ``kg\\,m\\,s^{-1}``; ``""`` for a dimensionless quantity.
+
+    Examples
+    ========
+    >>> si_unit_latex(DIMENSIONS["inertia"]), si_unit_latex(DIMENSIONS["energy"])
+    ('kg\\\\,m^{2}', 'J')
+    >>> si_unit_latex(DIMENSIONS["torque"], torque=True), si_unit_latex(DIMENSIONS["angle"])
+    ('N\\\\,m', '')
+    """
+    if dimension.is_dimensionless:
+        return ""
+    if dimension == _ENERGY and torque:
+        return "N\\,m"
+    if dimension in _NAMED_UNITS:
+        return _NAMED_UNITS[dimension]
+    parts = []
+    for unit, exponent in (("kg", dimension.mass), ("m", dimension.length), ("s", dimension.time)):
+        if exponent:
+            parts.append(unit if exponent == 1 else f"{unit}^{{{exponent}}}")
+    return "\\,".join(parts)

@@ -18,6 +18,9 @@ from tutgen.render.blocks import (
     section,
     tex_name,
 )
+from tutgen.spec.units import DIMENSIONS
+
+ENERGY = DIMENSIONS["energy"]  # numeric energies carry J (TexPrinter.unit)
 
 
 def energies(c: SolutionContext) -> dict[str, Any] | None:
@@ -35,16 +38,16 @@ def energies(c: SolutionContext) -> dict[str, Any] | None:
     t_size = ops(d.kinetic_energy)
     long_t = t_size > budgets.PRINT_BUDGET
     for e in d.energies:
-        blocks.append(display(tex.equation(f"T_{{{tex_name(e.name)}}}", num(e.kinetic))))
+        blocks.append(display(tex.equation(f"T_{{{tex_name(e.name)}}}", num(e.kinetic), dimension=ENERGY)))
     only_t = Ask.EQUATIONS_OF_MOTION not in s.ask and Ask.KINETIC_ENERGY in s.ask
     if long_t:
         blocks.append(display("T = \\tfrac12\\, \\dot q^T H(q)\\, \\dot q"))
         blocks.append(para(prose(f"with $H$ of the matrix form below (written out, $T$ has {t_size} operations).")))
     else:
-        blocks.append((boxed if only_t else display)(tex.equation("T", num(d.kinetic_energy))))
+        blocks.append((boxed if only_t else display)(tex.equation("T", num(d.kinetic_energy), dimension=ENERGY)))
     if d.potential_energy is not None and d.has_step(StepKind.POTENTIAL_ENERGY):
         u = num(d.potential_energy)
-        blocks.append(display(tex.equation("U", long_decimals(u) if long_t else u)))
+        blocks.append(display(tex.equation("U", long_decimals(u) if long_t else u, dimension=ENERGY)))
     if d.lagrangian is not None and d.has_step(StepKind.LAGRANGIAN) and not long_t:
-        blocks.append(display(tex.equation("L = T - U", num(d.lagrangian))))
+        blocks.append(display(tex.equation("L = T - U", num(d.lagrangian), dimension=ENERGY)))
     return sec

@@ -9,6 +9,7 @@ import sympy as sp
 
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.steps import Step, StepKind
+from tutgen.model.system import System
 from tutgen.render import blocks as budgets  # PRINT_BUDGET, PROGRAM_BUDGET read when a section is built
 from tutgen.render.blocks import (
     Block,
@@ -21,7 +22,11 @@ from tutgen.render.blocks import (
     section,
     stacked,
 )
+from tutgen.render.layout import LINE_WIDTH_PT, tex_width
 from tutgen.render.printer import TexPrinter
+from tutgen.spec.units import DIMENSIONS, Dimension
+
+ENERGY, TIME = DIMENSIONS["energy"], DIMENSIONS["time"]
 
 
 def matrix_form(c: SolutionContext) -> dict[str, Any] | None:
@@ -41,14 +46,17 @@ def matrix_form(c: SolutionContext) -> dict[str, Any] | None:
         sec["blocks"] += entry_by_entry(d, tex, num, with_c_g)
     else:
         sec["blocks"] += read_off(d, tex, num)
-        sec["blocks"].append(display(f"H = {tex(num(d.mass_matrix))}"))
+        h = num(d.mass_matrix)
+        sec["blocks"].append(display(f"H = {tex(h)}{tex.unit(h, shared(inertia_dimensions(s)))}"))
     if with_c_g and size <= budgets.PRINT_BUDGET:
-        sec["blocks"].append(
-            display(
-                f"C = {tex(num(d.coriolis_vector))},\\quad G = {tex(num(d.gravity_vector))},"
-                f"\\quad Q = {tex(num(d.generalized_forces))}"
-            )
-        )
+        forces, torque = force_dimensions(s)
+        c_vec, g_vec, q_vec = (num(v) for v in (d.coriolis_vector, d.gravity_vector, d.generalized_forces))
+        unit = shared(forces)
+        shown = [f"{n} = {tex(v)}{tex.unit(v, unit, torque)}" for n, v in (("C", c_vec), ("G", g_vec), ("Q", q_vec))]
+        sec["blocks"].append(display(",\\quad ".join(shown)))
+        sec["blocks"] += assembled(c) + coriolis_matrix_blocks(c)
+    if size <= budgets.PRINT_BUDGET:
+        sec["blocks"] += determinant_blocks(c)
     return sec
 
 
@@ -92,6 +100,103 @@ def _partial(a: int, b: int, k: int, d: Derivation) -> str:
     """dH_ab/dq_k, 0-based, with H's symmetry written out as H_ab (a <= b)."""
     a, b = min(a, b), max(a, b)
     return f"\\frac{{\\partial H_{{{a + 1}{b + 1}}}}}{{\\partial {d.system.coordinates[k].latex}}}"
+
+
+def inertia_dimensions(s: System) -> list[list[Dimension | None]]:
+    """The dimension of each H_ij: an energy over the dimensions of the rates q̇_i q̇_j (kg m² between
+    two angles, kg between two lengths, kg m between one of each); None where a coordinate's is unknown."""
+    rates = [q.si_dimension / TIME if q.si_dimension is not None else None for q in s.coordinates]
+    return [[ENERGY / (ri * rj) if ri is not None and rj is not None else None for rj in rates] for ri in rates]
+
+
+def force_dimensions(s: System) -> tuple[list[Dimension | None], bool]:
+    """The dimension of each C_i, G_i, Q_i (an energy over the coordinate's: N m for an angle, N for a
+    length), and whether they are all torques (printed N m rather than J)."""
+    dims = [ENERGY / q.si_dimension if q.si_dimension is not None else None for q in s.coordinates]
+    return dims, all(q.si_dimension is not None and q.si_dimension.is_dimensionless for q in s.coordinates)
+
+
+def shared(dims: list[Any]) -> Dimension | None:
+    """The one dimension of all the entries of a matrix (nested lists flattened), or None."""
+    flat = [x for row in dims for x in (row if isinstance(row, list) else [row])]
+    return flat[0] if flat and all(x is not None and x == flat[0] for x in flat) else None
+
+
+#: the assembled H q_ddot + C + G = Q and det H are printed only for results this short (operations)
+ASSEMBLED_BUDGET = 400
+
+
+def assembled(c: SolutionContext) -> list[Block]:
+    """The matrix form with the matrices written out once, ``[H][q̈] + [C] + [G] = [Q]`` (as tutorial
+    problem 9 prints it), when it fits on one line; it is not broken across lines (the entries above are)."""
+    d, tex, num = c.d, c.tex, c.num
+    if ops(d.mass_matrix, d.coriolis_vector, d.gravity_vector) > ASSEMBLED_BUDGET:
+        return []
+    qdd = sp.ImmutableMatrix([q.qdd for q in c.s.coordinates])
+    parts = [f"{tex(num(d.mass_matrix))} {tex(qdd)}"]
+    parts += [tex(num(v)) for v in (d.coriolis_vector, d.gravity_vector) if any(e != 0 for e in v)]
+    line = " + ".join(parts) + f" = {tex(num(d.generalized_forces))}"
+    if tex_width(line) > LINE_WIDTH_PT:
+        return []
+    return [para(prose("Assembled:")), display(line)]
+
+
+def coriolis_matrix_blocks(c: SolutionContext) -> list[Block]:
+    """``C = C'(q, q̇) q̇``: the matrix with ``C'_{ij} = Σ_k c_{ijk} q̇_k`` (the symmetric symbols), the one
+    tutorial problem 7 prints, for which ``Ḣ - 2C'`` is skew-symmetric; the form ``H q̈ + C' q̇ + G = Q``."""
+    d, tex, num = c.d, c.tex, c.num
+    if d.coriolis_matrix is None or all(e == 0 for e in d.coriolis_matrix):
+        return []
+    qd = sp.ImmutableMatrix([q.qd for q in c.s.coordinates])
+    return [
+        para(
+            prose(
+                "The same $C$ is a matrix times the rates, $C = C'(q,\\dot q)\\,\\dot q$ with "
+                "$C'_{ij} = \\sum_k c_{ijk}\\dot q_k$, so that $H\\ddot q + C'\\dot q + G = Q$ "
+                "and $\\dot H - 2C'$ is skew-symmetric:"
+            )
+        ),
+        display(f"C' = {tex(num(d.coriolis_matrix))},\\quad C = C' {tex(qd)}"),
+    ]
+
+
+def determinant_blocks(c: SolutionContext) -> list[Block]:
+    """``det H`` where it matters: when it depends on the coordinates (the configurations where it vanishes
+    are singular) or is zero (then ``H`` cannot be inverted, as in tutorial problem 9)."""
+    d, tex, num = c.d, c.tex, c.num
+    det = d.mass_matrix_determinant
+    if det is None or ops(det) > ASSEMBLED_BUDGET or d.mass_matrix.shape[0] < 2:
+        return []
+    coordinates = {s for q in c.s.coordinates for s in (q.q, q.qd)}
+    if det == 0:
+        return [
+            display("\\det H = 0"),
+            para(
+                prose(
+                    "$H$ is singular: it has no inverse, so the equations cannot be solved for every "
+                    "acceleration, $\\ddot q = H^{-1}(Q - C - G)$ does not exist."
+                )
+            ),
+        ]
+    if not (sp.sympify(det).free_symbols & coordinates):
+        return []
+    return [
+        para(prose("Its determinant depends on the configuration; $H$ is singular where it vanishes:")),
+        display(f"\\det H = {tex(num(factor_det(det)))}"),
+    ]
+
+
+def factor_det(det: sp.Expr) -> sp.Expr:
+    """``det H`` in its shortest factored form (``m_2 a_1^2 a_2^2 (m_1 + m_2 \\sin^2\\theta_2)``): factored
+    as it is, and with every ``\\cos^2 x`` written ``1 - \\sin^2 x``; the model's form when neither is shorter."""
+    x = sp.Wild("x")
+    candidates = [det]
+    for form in (det, det.replace(sp.cos(x) ** 2, 1 - sp.sin(x) ** 2)):
+        try:
+            candidates.append(sp.factor(sp.expand(form)))
+        except (sp.PolynomialError, NotImplementedError):
+            continue
+    return min(candidates, key=sp.count_ops)  # min keeps the first of equally short forms
 
 
 def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
@@ -193,14 +298,20 @@ def entry_by_entry(d: Derivation, tex: TexPrinter, numeric: Any, with_c_g: bool)
         return long_decimals(numeric(e))
 
     n = d.mass_matrix.shape[0]
+    h_dims = inertia_dimensions(d.system)
+    f_dims, _ = force_dimensions(d.system)
     blocks: list[Block] = [para(prose("$H$ is symmetric, $H_{ji} = H_{ij}$; its entries on and above the diagonal:"))]
     for i in range(n):
         for j in range(i, n):
-            blocks.append(display(tex.equation(f"H_{{{i + 1}{j + 1}}}", num(d.mass_matrix[i, j]))))
+            entry = num(d.mass_matrix[i, j])
+            blocks.append(display(tex.equation(f"H_{{{i + 1}{j + 1}}}", entry, dimension=h_dims[i][j])))
     if with_c_g:
+        angles = [q.si_dimension is not None and q.si_dimension.is_dimensionless for q in d.system.coordinates]
         for name, vec in (("C", d.coriolis_vector), ("G", d.gravity_vector), ("Q", d.generalized_forces)):
             for i in range(n):
-                blocks.append(display(tex.equation(f"{name}_{{{i + 1}}}", num(vec[i]))))
+                entry = num(vec[i])
+                unit = tex.unit(entry, f_dims[i], angles[i])
+                blocks.append(display(tex.equation(f"{name}_{{{i + 1}}}", entry) + unit))
     return blocks
 
 

@@ -7,7 +7,7 @@ from collections.abc import Mapping
 
 import sympy as sp
 
-from tutgen.model.system import GROUND, Body, Coordinate, Joint, JointKind, Part
+from tutgen.model.system import GROUND, ArmTable, Body, Coordinate, DHRow, Joint, JointKind, Part
 from tutgen.spec import schema as S
 from tutgen.spec.builders.bodies import lumped_part
 from tutgen.spec.builders.context import Context
@@ -18,7 +18,7 @@ from tutgen.spec.places import ARM_LINKS
 from tutgen.spec.units import DIMENSIONS
 
 
-def build_arm(ctx: Context, used: dict[str, str]) -> tuple[list[Body], list[Joint]]:
+def build_arm(ctx: Context, used: dict[str, str]) -> tuple[list[Body], list[Joint], ArmTable | None]:
     """One body and one joint per row of `arm.links`, placed exactly as the DH matrices place them.
 
     modified (Craig), A_i = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta_i) Tz(d_i): the row's joint has
@@ -35,10 +35,10 @@ def build_arm(ctx: Context, used: dict[str, str]) -> tuple[list[Body], list[Join
     """
     spec = ctx.doc.arm
     if spec is None:
-        return [], []
+        return [], [], None
     if not spec.links and not ctx.dropped_arm_links():
         ctx.error(("arm", "links"), "the arm has no links; expected one row per link, from the base outward")
-        return [], []
+        return [], [], None
     # imported here, as in context.rotation_matrix: spec/ borrows only this formula from engine/
     from tutgen.engine.kinematics import rotation_about
 
@@ -55,6 +55,7 @@ def build_arm(ctx: Context, used: dict[str, str]) -> tuple[list[Body], list[Join
     other_joints = set(ctx.doc.joints)
     bodies: list[Body] = []
     joints: list[Joint] = []
+    table: list[DHRow] = []  # the rows as written, for the worked solution's table
     names: dict[str, str] = {}  # joint name -> its row
     parent = GROUND
     before = (sp.Integer(0), sp.Integer(0))  # standard: the previous row's (a, alpha); frame 0 is the world
@@ -99,6 +100,7 @@ def build_arm(ctx: Context, used: dict[str, str]) -> tuple[list[Body], list[Join
             parent = name
             continue
         assert kind is not None and body is not None and motor is not None and coord is not None
+        table.append(DHRow(name, theta, d, a, alpha))
         rx = rot(x_axis, here_alpha)
         if kind is JointKind.REVOLUTE:
             origin = sp.Matrix([here_a, 0, 0]) + rx * sp.Matrix([0, 0, d])
@@ -127,7 +129,7 @@ def build_arm(ctx: Context, used: dict[str, str]) -> tuple[list[Body], list[Join
             )
         )
         parent = name
-    return bodies, joints
+    return bodies, joints, ArmTable(spec.convention, tuple(table))
 
 
 def _joint_variable(

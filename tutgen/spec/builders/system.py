@@ -52,7 +52,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
     body_names = declared_bodies(ctx)  # with the arm's links: springs, loads, ... may refer to them
     bodies = build_bodies(ctx)
     used: dict[str, str] = {}  # coordinate -> the joint it drives (arm rows and joints alike)
-    arm_bodies, arm_joints = build_arm(ctx, used)
+    arm_bodies, arm_joints, arm_table = build_arm(ctx, used)
     tree_joints, placed = build_joints(ctx, body_names, arm_joints, used)
     springs, dampers = build_elements(ctx, body_names)
     loads = build_loads(ctx, body_names)
@@ -80,6 +80,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
         source=smap.path,
         parameters=tuple(parameters),
         coordinates=tuple(coordinates.values()),
+        arm=arm_table,
         bodies=tuple(arm_bodies + bodies),  # the arm first: bodies in `bodies` may hang from its links
         joints=tuple(joints),
         gravity=gravity,
