@@ -36,6 +36,7 @@ from tutgen.model.system import Ask, Coordinate, System
 from tutgen.model.text import MathSpan, RichText
 from tutgen.render.layout import BOXED_WIDTH_PT, LINE_WIDTH_PT, layout
 from tutgen.render.printer import TexPrinter
+from tutgen.render.size import count_ops_upto, size_text
 from tutgen.render.wording import engine_parts
 from tutgen.spec.units import decimal_text, in_unit
 
@@ -199,13 +200,11 @@ PROGRAM_BUDGET = 40000
 
 
 def _ops(*exprs: Any) -> int:
-    total = 0
-    for e in exprs:
-        if isinstance(e, sp.MatrixBase):
-            total += sum(sp.count_ops(x) for x in e)
-        elif isinstance(e, sp.Basic):
-            total += sp.count_ops(e)
-    return total
+    return count_ops_upto(exprs, PROGRAM_BUDGET)  # exact up to PROGRAM_BUDGET, else PROGRAM_BUDGET + 1
+
+
+def _said(ops: int) -> str:
+    return size_text(ops, PROGRAM_BUDGET)  # a count of _ops in words: "10503", "more than 40000"
 
 
 def given_items(system: System) -> list[list[Part]]:
@@ -318,7 +317,8 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
         only_t = Ask.EQUATIONS_OF_MOTION not in s.ask and Ask.KINETIC_ENERGY in s.ask
         if long_t:
             blocks.append(display("T = \\tfrac12\\, \\dot q^T H(q)\\, \\dot q"))
-            blocks.append(para(prose(f"with $H$ of the matrix form below (written out, $T$ has {t_size} operations).")))
+            written = f"written out, $T$ has {_said(t_size)} operations"
+            blocks.append(para(prose(f"with $H$ of the matrix form below ({written}).")))
         else:
             blocks.append((boxed if only_t else display)(tex.equation("T", num(d.kinetic_energy))))
         if d.potential_energy is not None and Ask.POTENTIAL_ENERGY in s.ask:
@@ -354,7 +354,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
     if d.equations_of_motion is not None and Ask.EQUATIONS_OF_MOTION in s.ask and long_eom:
         sec = section(
             "Equations of motion",
-            f"Written out, the {len(s.coordinates)} equations have {eom_size} operations: "
+            f"Written out, the {len(s.coordinates)} equations have {_said(eom_size)} operations: "
             "equation $i$ is row $i$ of the matrix form below,",
         )
         sec["blocks"].append(boxed("H(q)\\,\\ddot q + C(q,\\dot q) + G(q) = Q"))
@@ -404,7 +404,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
                 para(
                     prose(
                         f"{len(nonzero)} of the {len(d.christoffel)} symbols $h_{{ijk}}$ are nonzero; together they "
-                        f"have {size} operations, too many to print here. They are in the JSON output "
+                        f"have {_said(size)} operations, too many to print here. They are in the JSON output "
                         "(tutgen solve --format json, under christoffel), and $C$ above is their contraction."
                     )
                 )
@@ -632,7 +632,7 @@ def _program_blocks(d: Derivation, tex: TexPrinter, numeric: Any, size: int, wit
     blocks: list[Block] = [
         para(
             prose(
-                f"Written out, the entries of $H$, $C$ and $G$ have {size} operations. They are computed here "
+                f"Written out, the entries of $H$, $C$ and $G$ have {_said(size)} operations. They are computed here "
                 f"by the recursion that defines them instead: {len(needed)} intermediate quantities $x_k$, "
                 "each from earlier ones (a recursive Newton-Euler pass in the link frames gives $C$ with "
                 "$\\ddot q = 0$ and no gravity, and $G$ with the arm at rest; the composite-rigid-body "
