@@ -35,7 +35,7 @@ from tutgen.engine.matrix_form import christoffel_symbols, coriolis_terms, equat
 from tutgen.engine.newton_euler import derive_newton_euler
 from tutgen.engine.recursive import nested_dynamics
 from tutgen.engine.remarks import REMARK_CONSTANT_MASS_MATRIX, degeneracy_remarks, rotor_remark, zero_remarks
-from tutgen.engine.serial import REMARK_FAST_PATH, is_large_serial_chain, serial_checks, serial_dynamics
+from tutgen.engine.serial import REMARK_FAST_PATH, LazyTable, is_large_serial_chain, serial_checks, serial_dynamics
 from tutgen.engine.tidy import tidy
 from tutgen.errors import DerivationError, DerivationTimeout
 from tutgen.limits import DEFAULT_TIMEOUT, checkpoint, deadline, stage
@@ -223,11 +223,8 @@ def _serial_route(
         [sp.Add(*[h[i, j] * qdd[j] for j in range(n)], c_vec[i], g_vec[i], -q_vec[i]) for i in range(n)]
     )
 
-    checkpoint("Christoffel symbols")
-    zero = sp.Integer(0)
-    table = dyn.christoffel
-    first = dyn.christoffel_first_kind
-    keys = [(i, j, k) for i in range(n) for j in range(n) for k in range(n)]
+    # the Christoffel symbols are converted when first read (the JSON, an answer check): a worked
+    # solution of a large arm does not print them (issue 17)
 
     checkpoint("checks")
     checks = serial_checks(system, dyn)
@@ -249,8 +246,10 @@ def _serial_route(
         coriolis_matrix=dyn.coriolis_matrix,
         gravity_vector=g_vec,
         equations_of_motion=eom,
-        christoffel={key: table.get(key, zero) for key in keys},
-        christoffel_first_kind={key: first.get(key, zero) for key in keys},
+        christoffel=LazyTable(n, lambda: dyn.christoffel, lambda: dyn.christoffel_polys),
+        christoffel_first_kind=LazyTable(
+            n, lambda: dyn.christoffel_first_kind, lambda: dyn.christoffel_first_kind_polys
+        ),
         remarks=tuple(remarks),
         checks=tuple(checks),
         method=method,

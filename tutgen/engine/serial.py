@@ -34,7 +34,7 @@ from __future__ import annotations
 import math
 import random
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -50,6 +50,7 @@ from tutgen.model.system import GROUND, Joint, JointKind, System
 __all__ = [
     "LARGE",
     "REMARK_FAST_PATH",
+    "LazyTable",
     "SerialDynamics",
     "cse_form",
     "is_large_serial_chain",
@@ -136,18 +137,31 @@ class SerialDynamics:
     exact: _Exact = field(repr=False, compare=False)
 
     @cached_property
-    def christoffel(self) -> dict[tuple[int, int, int], sp.Expr]:
+    def christoffel_polys(self) -> dict[tuple[int, int, int], TrigPoly]:
+        """The tutorial's h_ijk, nonzero only, exactly (cheap: the conversion to sympy is what costs)."""
         n = len(self.coordinates)
         dh = self.exact.dh
         half = self.exact.algebra.ring.ground_new(self.exact.algebra.ring.domain(1, 2))
-        out: dict[tuple[int, int, int], sp.Expr] = {}
+        out: dict[tuple[int, int, int], TrigPoly] = {}
         for i in range(n):
             for j in range(n):
                 for k in range(n):
                     h = dh[i][j][k] - dh[j][k][i].scale(half)
                     if h:
-                        out[(i, j, k)] = h.to_expr()
+                        out[(i, j, k)] = h
         return out
+
+    @cached_property
+    def christoffel_first_kind_polys(self) -> dict[tuple[int, int, int], TrigPoly]:
+        """Gamma_ijk, nonzero only, both orders of j, k (the same object), exactly."""
+        out: dict[tuple[int, int, int], TrigPoly] = {}
+        for (i, j, k), gam in self.exact.gammas.items():
+            out[(i, j, k)] = out[(i, k, j)] = gam
+        return out
+
+    @cached_property
+    def christoffel(self) -> dict[tuple[int, int, int], sp.Expr]:
+        return {key: h.to_expr() for key, h in self.christoffel_polys.items()}
 
     @cached_property
     def coriolis_matrix(self) -> sp.ImmutableMatrix:
@@ -161,6 +175,59 @@ class SerialDynamics:
                 [(gam[(i, j, k)], 1, (self.rates[k],)) for k in range(n) if (i, j, k) in gam]
             ),
         )
+
+
+class LazyTable(Mapping[tuple[int, int, int], sp.Expr]):
+    """Every symbol (i, j, k) of an n x n x n table, zeros included, computed on first read.
+
+    A 6-DOF arm's tutorial table h_ijk takes longer to convert to sympy than everything else of the
+    derivation, and a worked solution does not print it (issue 17): the serial route hands the
+    :class:`~tutgen.engine.derivation.Derivation` this mapping, whose keys and length are known
+    without converting anything. Pickled, it is a plain dict (a sheet's worker sends its results).
+    """
+
+    def __init__(
+        self,
+        n: int,
+        nonzero: Callable[[], Mapping[tuple[int, int, int], sp.Expr]],
+        polys: Callable[[], Mapping[tuple[int, int, int], TrigPoly]],
+    ) -> None:
+        self._n = n
+        self._nonzero = nonzero
+        self._polys = polys
+        self._table: dict[tuple[int, int, int], sp.Expr] | None = None
+
+    def nonzero_count(self) -> int:
+        """How many symbols are not zero, without converting any."""
+        return len(self._polys())
+
+    def min_ops(self) -> int:
+        """A lower bound of ``sympy.count_ops`` of the nonzero symbols together, without converting any:
+        a polynomial of s terms converts to a sum with at least s - 1 additions (its coefficients are
+        grouped by pulling out single factors, which never merges two terms)."""
+        return sum(max(p.size() - 1, 0) for p in self._polys().values())
+
+    def _full(self) -> dict[tuple[int, int, int], sp.Expr]:
+        if self._table is None:
+            nonzero = self._nonzero()
+            zero = sp.Integer(0)
+            n = self._n
+            keys = [(i, j, k) for i in range(n) for j in range(n) for k in range(n)]
+            self._table = {key: nonzero.get(key, zero) for key in keys}
+        return self._table
+
+    def __getitem__(self, key: tuple[int, int, int]) -> sp.Expr:
+        return self._full()[key]
+
+    def __iter__(self) -> Iterator[tuple[int, int, int]]:
+        n = self._n
+        return ((i, j, k) for i in range(n) for j in range(n) for k in range(n))
+
+    def __len__(self) -> int:
+        return self._n**3
+
+    def __reduce__(self) -> tuple[type, tuple[dict[tuple[int, int, int], sp.Expr]]]:
+        return (dict, (self._full(),))
 
 
 def _coriolis_matrix(ex: _Exact) -> list[list[TrigPoly]]:

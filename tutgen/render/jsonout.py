@@ -28,7 +28,12 @@ class _GrammarPrinter(StrPrinter):
         return "exp(1)"
 
 
-_PRINTER = _GrammarPrinter({"order": "lex"})
+# Terms and factors are printed in the order of the expression's arguments, which sympy sorts when it
+# builds a sum or a product (Basic.compare: by kind, then by name or value; never by hash), so the
+# text is the same on every run, machine and PYTHONHASHSEED. order="lex" re-sorted every sum of the
+# tree by its monomials while printing, superlinear in its size: 337 of the 374 s of the symbolic
+# PUMA's JSON (issue 17). The values are unchanged; only their printed order is (docs/json-output.md).
+_PRINTER = _GrammarPrinter({"order": "none"})
 
 
 def expr_text(expr: sp.Expr) -> str:

@@ -16,12 +16,14 @@ never removes a sum or a power's base from the tree, so the bound holds.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from typing import Any
 
 import sympy as sp
 
-__all__ = ["count_ops_upto", "lower_bound_exceeds", "size_text"]
+from tutgen.engine.serial import LazyTable
+
+__all__ = ["count_ops_upto", "lower_bound_exceeds", "nonzero_count", "size_text"]
 
 
 def lower_bound_exceeds(exprs: Iterable[sp.Basic], limit: int) -> bool:
@@ -45,16 +47,25 @@ def lower_bound_exceeds(exprs: Iterable[sp.Basic], limit: int) -> bool:
 
 
 def count_ops_upto(exprs: Iterable[Any], limit: int) -> int:
-    """``sympy.count_ops`` of the expressions (and of every entry of a matrix) together when that is at
-    most ``limit``, else ``limit + 1``: an expression certainly too long is never counted in full.
+    """``sympy.count_ops`` of the expressions (and of every entry of a matrix or value of a table)
+    together when that is at most ``limit``, else ``limit + 1``: an expression certainly too long is
+    never counted in full, and a large arm's table of Christoffel symbols never converted for it.
 
     >>> x, y = sp.symbols("x y")
     >>> count_ops_upto([x * y + sp.sin(x)], 10), count_ops_upto([sp.Add(*sp.symbols("a:20"))], 5)
     (3, 6)
     """
     items: list[sp.Basic] = []
+    bound = 0
     for e in exprs:
-        if isinstance(e, sp.MatrixBase):
+        if isinstance(e, LazyTable):  # a large arm's table, not yet converted: its own lower bound
+            bound += e.min_ops()
+            if bound > limit:
+                return limit + 1
+            items += [x for x in e.values() if x != 0]
+        elif isinstance(e, Mapping):  # a table of symbols: its values
+            items += [x for x in e.values() if isinstance(x, sp.Basic) and x != 0]
+        elif isinstance(e, sp.MatrixBase):
             items += [x for x in e if isinstance(x, sp.Basic)]
         elif isinstance(e, sp.Basic):
             items.append(e)
@@ -66,6 +77,13 @@ def count_ops_upto(exprs: Iterable[Any], limit: int) -> int:
         if total > limit:
             return limit + 1
     return total
+
+
+def nonzero_count(table: Mapping[Any, sp.Expr]) -> int:
+    """How many entries of a table of symbols are not zero (a large arm's, without converting them)."""
+    if isinstance(table, LazyTable):
+        return table.nonzero_count()
+    return sum(1 for v in table.values() if v != 0)
 
 
 def size_text(ops: int, limit: int) -> str:

@@ -36,7 +36,7 @@ from tutgen.model.system import Ask, Coordinate, System
 from tutgen.model.text import MathSpan, RichText
 from tutgen.render.layout import BOXED_WIDTH_PT, LINE_WIDTH_PT, layout
 from tutgen.render.printer import TexPrinter
-from tutgen.render.size import count_ops_upto, size_text
+from tutgen.render.size import count_ops_upto, nonzero_count, size_text
 from tutgen.render.wording import engine_parts
 from tutgen.spec.units import decimal_text, in_unit
 
@@ -388,7 +388,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
             )
         sections.append(sec)
 
-    if d.christoffel and Ask.CHRISTOFFEL in s.ask:
+    if Ask.CHRISTOFFEL in s.ask and d.christoffel:  # asked first: a large arm's are computed on reading
         sec = section(
             "Christoffel symbols",
             "In the tutorial's convention $h_{ijk} = \\partial H_{ij}/\\partial q_k - \\tfrac12 "
@@ -397,13 +397,14 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
             "\\partial_j H_{ik} - \\partial_i H_{jk})$.",
         )
         blocks = sec["blocks"]
-        nonzero = [(k, v) for k, v in sorted(d.christoffel.items()) if v != 0]
-        size = _ops(*(v for _, v in nonzero))
+        size = _ops(d.christoffel)  # a large arm's table is sized without converting it
+        nonzero = [] if size > PRINT_BUDGET else [(k, v) for k, v in sorted(d.christoffel.items()) if v != 0]
         if size > PRINT_BUDGET:
             blocks.append(
                 para(
                     prose(
-                        f"{len(nonzero)} of the {len(d.christoffel)} symbols $h_{{ijk}}$ are nonzero; together they "
+                        f"{nonzero_count(d.christoffel)} of the {len(d.christoffel)} symbols $h_{{ijk}}$ are nonzero; "
+                        "together they "
                         f"have {_said(size)} operations, too many to print here. They are in the JSON output "
                         "(tutgen solve --format json, under christoffel), and $C$ above is their contraction."
                     )
@@ -624,7 +625,7 @@ def _program_blocks(d: Derivation, tex: TexPrinter, numeric: Any, size: int, wit
     def num(e: Any) -> Any:
         return _decimals(numeric(e))
 
-    n = d.mass_matrix.shape[0]
+    n = len(d.system.coordinates)
     outputs = (
         (program.mass_matrix, program.coriolis_vector, program.gravity_vector) if with_c_g else (program.mass_matrix,)
     )
