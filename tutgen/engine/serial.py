@@ -197,6 +197,11 @@ class LazyTable(Mapping[tuple[int, int, int], sp.Expr]):
         self._polys = polys
         self._table: dict[tuple[int, int, int], sp.Expr] | None = None
 
+    @property
+    def is_converted(self) -> bool:
+        """Whether the symbols have been converted to sympy (read at least once)."""
+        return self._table is not None
+
     def nonzero_count(self) -> int:
         """How many symbols are not zero, without converting any."""
         return len(self._polys())
