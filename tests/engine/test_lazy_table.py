@@ -9,7 +9,8 @@ import pickle
 import sympy as sp
 
 from tests.conftest import SPECS, solved
-from tutgen.engine.serial import LazyTable, serial_dynamics
+from tutgen.engine.lazytable import LazyTable
+from tutgen.engine.serial import serial_dynamics
 from tutgen.render.size import count_ops_upto, nonzero_count
 
 

@@ -31,11 +31,12 @@ from tutgen.engine.forces import generalized_forces, rotors, spring_energies
 from tutgen.engine.inertia import BodyInertia, Principal, body_inertia, principal_axes
 from tutgen.engine.kinematics import Kinematics
 from tutgen.engine.lagrange import energies, lagrange_equations
+from tutgen.engine.lazytable import LazyTable
 from tutgen.engine.matrix_form import christoffel_symbols, coriolis_terms, equations_of_motion, gravity_vector
 from tutgen.engine.newton_euler import derive_newton_euler
 from tutgen.engine.recursive import nested_dynamics
 from tutgen.engine.remarks import REMARK_CONSTANT_MASS_MATRIX, degeneracy_remarks, rotor_remark, zero_remarks
-from tutgen.engine.serial import REMARK_FAST_PATH, LazyTable, is_large_serial_chain, serial_checks, serial_dynamics
+from tutgen.engine.serial import REMARK_FAST_PATH, is_large_serial_chain, serial_checks, serial_dynamics
 from tutgen.engine.tidy import tidy
 from tutgen.errors import DerivationError, DerivationTimeout
 from tutgen.limits import DEFAULT_TIMEOUT, checkpoint, deadline, stage

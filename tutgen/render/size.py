@@ -21,7 +21,7 @@ from typing import Any
 
 import sympy as sp
 
-from tutgen.engine.serial import LazyTable
+from tutgen.engine.lazytable import LazyTable
 
 __all__ = ["count_ops_upto", "lower_bound_exceeds", "nonzero_count", "size_text"]
 
