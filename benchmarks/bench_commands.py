@@ -91,6 +91,7 @@ def main() -> int:
     parser.add_argument("--max-n", type=int, default=10, help="largest planar chain (default 10)")
     parser.add_argument("--baseline", help="git revision to measure the same commands with")
     parser.add_argument("--timeout", type=float, default=900.0, help="seconds per command")
+    parser.add_argument("--no-spec-arm", action="store_true", help="skip specs/arms/puma560.yaml (puma6 is kept)")
     opts = parser.parse_args()
 
     py = sys.executable
@@ -119,6 +120,8 @@ def main() -> int:
         ),
     ]
 
+    if opts.no_spec_arm:
+        commands = [(name, cmd) for name, cmd in commands if "puma560.yaml" not in name]
     print(f"load average at start: {os.getloadavg()[0]:.1f} (2 cores, shared); medians of {opts.repeat} fresh runs")
     print("\nderivation only, in process (bench_arms.py workers, imports excluded):")
     kane = derivation_time("kane", "puma6", opts.timeout)
