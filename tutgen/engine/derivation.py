@@ -77,7 +77,7 @@ class Derivation:
     coriolis_matrix: sp.ImmutableMatrix | None = None
     gravity_vector: sp.ImmutableMatrix | None = None
     equations_of_motion: sp.ImmutableMatrix | None = None  # (H q_ddot + C + G - Q)_i, each = 0
-    # tutorial's h_ijk, 0-based; a large serial arm's are converted when first read (serial.LazyTable)
+    # tutorial's h_ijk, 0-based; a large serial arm's are converted when first read (engine/lazytable.py)
     christoffel: Mapping[tuple[int, int, int], sp.Expr] = field(default_factory=dict)
     christoffel_first_kind: Mapping[tuple[int, int, int], sp.Expr] = field(default_factory=dict)
     mass_matrix_determinant: sp.Expr | None = None
