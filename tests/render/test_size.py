@@ -23,6 +23,13 @@ SHAPES = [
     pytest.param(x ** (-2 * a) + sp.cos(x - y) * (x + y) ** -1, id="symbolic-negative-power"),
     pytest.param(sp.Derivative(q, sp.Symbol("t")) ** 2 * q, id="derivative-of-applied-function"),
     pytest.param(sp.Add(*(sp.Symbol(f"m{i}") * sp.cos(x) ** i for i in range(12))), id="long-sum"),
+    pytest.param(a - x * y, id="minus-product-in-sum"),
+    pytest.param(a - x * y / z - 2 * x * z, id="minus-quotients-in-sum"),
+    pytest.param(-1 / (x * y), id="minus-reciprocal-product"),
+    pytest.param(-x * y * z, id="minus-product"),
+    pytest.param(x * sp.exp(-y) - z * sp.exp(y) / 3, id="exponentials-in-products"),
+    pytest.param((x + y) * (x - z) * sp.sin(a) / (2 * (y + z) ** 2), id="products-of-sums"),
+    pytest.param(sp.Mul(x, sp.Mul(y, z, evaluate=False), evaluate=False), id="nested-product"),
 ]
 
 
