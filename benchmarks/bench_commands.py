@@ -94,8 +94,13 @@ def main() -> int:
     parser.add_argument("--no-spec-arm", action="store_true", help="skip specs/arms/puma560.yaml (puma6 is kept)")
     opts = parser.parse_args()
 
+    with tempfile.TemporaryDirectory(prefix="tutgen-bench-") as scratch:
+        return run(opts, Path(scratch))
+
+
+def run(opts: argparse.Namespace, tmp: Path) -> int:
+    """Every measurement, with the specs and the baseline's tree in ``tmp`` (removed afterwards)."""
     py = sys.executable
-    tmp = Path(tempfile.mkdtemp(prefix="tutgen-bench-"))
     (tmp / "puma6.yaml").write_text(puma_spec(), encoding="utf-8")
     for n in range(2, opts.max_n + 1):
         (tmp / f"planar-{n}.yaml").write_text(planar_spec(n), encoding="utf-8")
