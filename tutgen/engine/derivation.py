@@ -7,6 +7,7 @@ the parameters that have values.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -77,8 +78,9 @@ class Derivation:
     coriolis_matrix: sp.ImmutableMatrix | None = None
     gravity_vector: sp.ImmutableMatrix | None = None
     equations_of_motion: sp.ImmutableMatrix | None = None  # (H q_ddot + C + G - Q)_i, each = 0
-    christoffel: dict[tuple[int, int, int], sp.Expr] = field(default_factory=dict)  # tutorial's h_ijk, 0-based
-    christoffel_first_kind: dict[tuple[int, int, int], sp.Expr] = field(default_factory=dict)
+    # tutorial's h_ijk, 0-based; a large serial arm's are converted when first read (engine/lazytable.py)
+    christoffel: Mapping[tuple[int, int, int], sp.Expr] = field(default_factory=dict)
+    christoffel_first_kind: Mapping[tuple[int, int, int], sp.Expr] = field(default_factory=dict)
     mass_matrix_determinant: sp.Expr | None = None
     remarks: tuple[str, ...] = ()
     checks: tuple[Check, ...] = ()

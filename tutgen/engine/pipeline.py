@@ -34,6 +34,7 @@ from tutgen.engine.forces import generalized_forces, rotors, spring_energies
 from tutgen.engine.inertia import BodyInertia, Principal, body_inertia, principal_axes
 from tutgen.engine.kinematics import Kinematics
 from tutgen.engine.lagrange import energies, lagrange_equations
+from tutgen.engine.lazytable import LazyTable
 from tutgen.engine.matrix_form import christoffel_symbols, coriolis_terms, equations_of_motion, gravity_vector
 from tutgen.engine.newton_euler import derive_newton_euler
 from tutgen.engine.recursive import nested_dynamics
@@ -274,11 +275,8 @@ def _serial_route(
         [sp.Add(*[h[i, j] * qdd[j] for j in range(n)], c_vec[i], g_vec[i], -q_vec[i]) for i in range(n)]
     )
 
-    checkpoint("Christoffel symbols")
-    zero = sp.Integer(0)
-    table = dyn.christoffel
-    first = dyn.christoffel_first_kind
-    keys = [(i, j, k) for i in range(n) for j in range(n) for k in range(n)]
+    # the Christoffel symbols are converted when first read (the JSON, an answer check): a worked
+    # solution of a large arm does not print them (issue 17)
 
     checkpoint("checks")
     checks = serial_checks(system, dyn)
@@ -300,8 +298,10 @@ def _serial_route(
         coriolis_matrix=dyn.coriolis_matrix,
         gravity_vector=g_vec,
         equations_of_motion=eom,
-        christoffel={key: table.get(key, zero) for key in keys},
-        christoffel_first_kind={key: first.get(key, zero) for key in keys},
+        christoffel=LazyTable(n, lambda: dyn.christoffel, lambda: dyn.christoffel_polys),
+        christoffel_first_kind=LazyTable(
+            n, lambda: dyn.christoffel_first_kind, lambda: dyn.christoffel_first_kind_polys
+        ),
         remarks=tuple(remarks),
         checks=tuple(checks),
         method=_method_name(methods),

@@ -136,18 +136,31 @@ class SerialDynamics:
     exact: _Exact = field(repr=False, compare=False)
 
     @cached_property
-    def christoffel(self) -> dict[tuple[int, int, int], sp.Expr]:
+    def christoffel_polys(self) -> dict[tuple[int, int, int], TrigPoly]:
+        """The tutorial's h_ijk, nonzero only, exactly (cheap: the conversion to sympy is what costs)."""
         n = len(self.coordinates)
         dh = self.exact.dh
         half = self.exact.algebra.ring.ground_new(self.exact.algebra.ring.domain(1, 2))
-        out: dict[tuple[int, int, int], sp.Expr] = {}
+        out: dict[tuple[int, int, int], TrigPoly] = {}
         for i in range(n):
             for j in range(n):
                 for k in range(n):
                     h = dh[i][j][k] - dh[j][k][i].scale(half)
                     if h:
-                        out[(i, j, k)] = h.to_expr()
+                        out[(i, j, k)] = h
         return out
+
+    @cached_property
+    def christoffel_first_kind_polys(self) -> dict[tuple[int, int, int], TrigPoly]:
+        """Gamma_ijk, nonzero only, both orders of j, k (the same object), exactly."""
+        out: dict[tuple[int, int, int], TrigPoly] = {}
+        for (i, j, k), gam in self.exact.gammas.items():
+            out[(i, j, k)] = out[(i, k, j)] = gam
+        return out
+
+    @cached_property
+    def christoffel(self) -> dict[tuple[int, int, int], sp.Expr]:
+        return {key: h.to_expr() for key, h in self.christoffel_polys.items()}
 
     @cached_property
     def coriolis_matrix(self) -> sp.ImmutableMatrix:

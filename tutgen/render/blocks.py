@@ -197,13 +197,18 @@ PROGRAM_BUDGET = 40000
 
 
 def ops(*exprs: Any) -> int:
-    total = 0
-    for e in exprs:
-        if isinstance(e, sp.MatrixBase):
-            total += sum(sp.count_ops(x) for x in e)
-        elif isinstance(e, sp.Basic):
-            total += sp.count_ops(e)
-    return total
+    """Operations of the expressions (sympy's count_ops), exact up to PROGRAM_BUDGET, else PROGRAM_BUDGET + 1:
+    a budgeted count (tutgen.render.size) that stops at the budget instead of walking 180 000 operations."""
+    from tutgen.render.size import count_ops_upto
+
+    return count_ops_upto(exprs, PROGRAM_BUDGET)
+
+
+def said(count: int) -> str:
+    """A count of :func:`ops` in words: "10503", or "more than 40000" past the budget."""
+    from tutgen.render.size import size_text
+
+    return size_text(count, PROGRAM_BUDGET)
 
 
 def long_decimals(expr: Any) -> Any:

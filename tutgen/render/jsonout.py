@@ -7,34 +7,27 @@ velocity and acceleration written x_dot and x_ddot. Keys appear only for results
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
 from typing import Any
 
 import sympy as sp
-from sympy.printing.str import StrPrinter
 
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.newton_euler import NewtonEuler
+from tutgen.engine.serial import LARGE
 from tutgen.engine.steps import Step
 from tutgen.figure.view import figure_json
 from tutgen.model.system import Ask
+from tutgen.render.grammar import grammar_text
 from tutgen.version import __version__
 
 JSON_FORMAT_VERSION = 1
 
 
-class _GrammarPrinter(StrPrinter):
-    """sympy's str printer, kept inside the spec grammar (which has no constant E)."""
-
-    def _print_Exp1(self, expr: sp.Basic) -> str:
-        return "exp(1)"
-
-
-_PRINTER = _GrammarPrinter({"order": "lex"})
-
-
 def expr_text(expr: sp.Expr) -> str:
-    """An expression in the spec grammar (``**`` for powers, exact fractions, ``exp(1)`` for e)."""
-    return _PRINTER.doprint(expr)
+    """An expression in the spec grammar (``**`` for powers, exact fractions, ``exp(1)`` for e), its
+    terms in sympy's argument order (tutgen.render.grammar: fast and the same under any hash seed)."""
+    return grammar_text(expr)
 
 
 def value(expr: Any) -> Any:
@@ -151,9 +144,12 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
             }
         if Ask.EQUATIONS_OF_MOTION in ask and d.equations_of_motion is not None:
             results["equations_of_motion"] = vector(num(d.equations_of_motion))
+        if Ask.MATRIX_FORM in ask and d.program is not None:
+            results["program"] = _program(d, num)
         if Ask.CHRISTOFFEL in ask:
-            results["christoffel"] = _christoffel(d.christoffel, num)
-            results["christoffel_first_kind"] = _christoffel(d.christoffel_first_kind, num)
+            large = len(system.coordinates) >= LARGE  # n^3 symbols, most of them zero: nonzero only
+            results["christoffel"] = _christoffel(d.christoffel, num, large)
+            results["christoffel_first_kind"] = _christoffel(d.christoffel_first_kind, num, large)
         if d.newton_euler is not None and Ask.EQUATIONS_OF_MOTION in ask:
             results["newton_euler"] = _newton_euler(d.newton_euler, num)
 
@@ -228,8 +224,24 @@ def steps_json(d: Derivation) -> list[dict[str, Any]]:
     return [one(step) for step in d.steps]
 
 
-def _christoffel(table: dict[tuple[int, int, int], sp.Expr], num: Any) -> dict[str, Any]:
-    return {f"{i + 1},{j + 1},{k + 1}": value(num(e)) for (i, j, k), e in sorted(table.items())}
+def _christoffel(table: Mapping[tuple[int, int, int], sp.Expr], num: Any, nonzero_only: bool) -> dict[str, Any]:
+    """Every symbol, zeros included, or (a system of ``LARGE`` or more coordinates) the nonzero ones."""
+    entries = ((key, value(num(e))) for key, e in sorted(table.items()))
+    return {f"{i + 1},{j + 1},{k + 1}": v for (i, j, k), v in entries if not (nonzero_only and v == 0)}
+
+
+def _program(d: Derivation, num: Any) -> dict[str, Any]:
+    """A serial arm's H, C q_dot and G as the straight-line program of tutgen.engine.recursive: the
+    definitions x_k = ... in evaluation order (each uses only earlier ones), and the three matrices
+    written with them; substituted back, they equal mass_matrix, coriolis_vector and gravity_vector."""
+    program = d.program
+    assert program is not None
+    return {
+        "definitions": [{"name": str(x), "value": value(num(e))} for x, e in program.definitions],
+        "mass_matrix": matrix(num(program.mass_matrix)),
+        "coriolis_vector": vector(num(program.coriolis_vector)),
+        "gravity_vector": vector(num(program.gravity_vector)),
+    }
 
 
 def dumps(doc: Any) -> str:

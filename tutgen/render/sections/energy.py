@@ -15,6 +15,7 @@ from tutgen.render.blocks import (
     ops,
     para,
     prose,
+    said,
     section,
     tex_name,
 )
@@ -42,7 +43,8 @@ def energies(c: SolutionContext) -> dict[str, Any] | None:
     only_t = Ask.EQUATIONS_OF_MOTION not in s.ask and Ask.KINETIC_ENERGY in s.ask
     if long_t:
         blocks.append(display("T = \\tfrac12\\, \\dot q^T H(q)\\, \\dot q"))
-        blocks.append(para(prose(f"with $H$ of the matrix form below (written out, $T$ has {t_size} operations).")))
+        written = f"written out, $T$ has {said(t_size)} operations"
+        blocks.append(para(prose(f"with $H$ of the matrix form below ({written}).")))
     else:
         blocks.append((boxed if only_t else display)(tex.equation("T", num(d.kinetic_energy), dimension=ENERGY)))
     if d.potential_energy is not None and d.has_step(StepKind.POTENTIAL_ENERGY):

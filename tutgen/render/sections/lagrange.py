@@ -6,7 +6,7 @@ from typing import Any
 
 from tutgen.engine.steps import StepKind
 from tutgen.render import blocks as budgets  # PRINT_BUDGET, PROGRAM_BUDGET read when a section is built
-from tutgen.render.blocks import SolutionContext, boxed, math, ops, para, section, stacked, text
+from tutgen.render.blocks import SolutionContext, boxed, math, ops, para, said, section, stacked, text
 
 
 def lagrange_equations(c: SolutionContext) -> dict[str, Any] | None:
@@ -42,7 +42,7 @@ def equations_of_motion(c: SolutionContext) -> dict[str, Any] | None:
     if eom_size > budgets.PRINT_BUDGET:
         sec = section(
             "Equations of motion",
-            f"Written out, the {len(s.coordinates)} equations have {eom_size} operations: "
+            f"Written out, the {len(s.coordinates)} equations have {said(eom_size)} operations: "
             "equation $i$ is row $i$ of the matrix form below,",
         )
         sec["blocks"].append(boxed("H(q)\\,\\ddot q + C(q,\\dot q) + G(q) = Q"))

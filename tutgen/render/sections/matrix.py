@@ -19,11 +19,13 @@ from tutgen.render.blocks import (
     ops,
     para,
     prose,
+    said,
     section,
     stacked,
 )
 from tutgen.render.layout import LINE_WIDTH_PT, tex_width
 from tutgen.render.printer import TexPrinter
+from tutgen.render.size import nonzero_count
 from tutgen.spec.units import DIMENSIONS, Dimension
 
 ENERGY, TIME = DIMENSIONS["energy"], DIMENSIONS["time"]
@@ -203,7 +205,7 @@ def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
     """The non-zero dH_ij/dq_k, then each non-zero Christoffel symbol from its definition in both
     conventions (the tutorial's h_ijk and the symmetric c_ijk of the first kind), then C as a vector."""
     d, tex, num = c.d, c.tex, c.num
-    if not d.christoffel or not d.has_step(StepKind.CHRISTOFFEL):
+    if not d.has_step(StepKind.CHRISTOFFEL) or not d.christoffel:  # asked first: a large arm's convert on reading
         return None
     sec = section(
         "Christoffel symbols",
@@ -213,14 +215,14 @@ def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
         "\\partial_j H_{ik} - \\partial_i H_{jk})$, with the same sum.",
     )
     blocks = sec["blocks"]
-    nonzero = [(k, v) for k, v in sorted(d.christoffel.items()) if v != 0]
-    size = ops(*(v for _, v in nonzero))
+    size = ops(d.christoffel)  # a large arm's table (tutgen.engine.lazytable) is sized without converting it
+    nonzero = [] if size > budgets.PRINT_BUDGET else [(k, v) for k, v in sorted(d.christoffel.items()) if v != 0]
     if size > budgets.PRINT_BUDGET:
         blocks.append(
             para(
                 prose(
-                    f"{len(nonzero)} of the {len(d.christoffel)} symbols $h_{{ijk}}$ are nonzero; together they "
-                    f"have {size} operations, too many to print here. They are in the JSON output "
+                    f"{nonzero_count(d.christoffel)} of the {len(d.christoffel)} symbols $h_{{ijk}}$ are nonzero; "
+                    f"together they have {said(size)} operations, too many to print here. They are in the JSON output "
                     "(tutgen solve --format json, under christoffel), and $C$ above is their contraction."
                 )
             )
@@ -325,7 +327,7 @@ def program_blocks(d: Derivation, tex: TexPrinter, numeric: Any, size: int, with
     def num(e: Any) -> Any:
         return long_decimals(numeric(e))
 
-    n = d.mass_matrix.shape[0]
+    n = len(d.system.coordinates)
     outputs = (
         (program.mass_matrix, program.coriolis_vector, program.gravity_vector) if with_c_g else (program.mass_matrix,)
     )
@@ -333,7 +335,7 @@ def program_blocks(d: Derivation, tex: TexPrinter, numeric: Any, size: int, with
     blocks: list[Block] = [
         para(
             prose(
-                f"Written out, the entries of $H$, $C$ and $G$ have {size} operations. They are computed here "
+                f"Written out, the entries of $H$, $C$ and $G$ have {said(size)} operations. They are computed here "
                 f"by the recursion that defines them instead: {len(needed)} intermediate quantities $x_k$, "
                 "each from earlier ones (a recursive Newton-Euler pass in the link frames gives $C$ with "
                 "$\\ddot q = 0$ and no gravity, and $G$ with the arm at rest; the composite-rigid-body "

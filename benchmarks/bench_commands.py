@@ -1,0 +1,162 @@
+"""The commands a user types, end to end, against KanesMethod and against an earlier tutgen, in one run.
+
+Run from the repository root:  python benchmarks/bench_commands.py [--repeat N] [--baseline REV]
+
+Every figure is the wall time of a fresh process (interpreter start and imports included), the
+median of ``--repeat`` runs (one run when a run takes over 20 s). In the same run it measures
+
+- the derivation alone, in process (bench_arms.py's workers): tutgen's expanded H, C q_dot, G
+  (``serial_dynamics``), its straight-line program (``nested_dynamics``) and sympy.physics.mechanics'
+  ``KanesMethod`` on the same fully symbolic 6-DOF arm (bare: no simplification);
+- ``tutgen solve`` of that arm to Markdown and to JSON, of ``specs/arms/puma560.yaml``, of planar
+  chains n = 2 ... --max-n to JSON (next to their derivation alone), of p05 to Markdown, and
+  ``tutgen --help``;
+- with ``--baseline REV``, the same commands run by the tutgen of git revision REV (extracted with
+  ``git archive`` to a temporary directory), so that before/after ratios are measured on equal terms
+  on a shared machine.
+
+Targets of issue 17: PUMA md <= 2 s and JSON <= 5 s end to end, planar 10 JSON <= 5 s, p05 md <= 1 s,
+--help <= 0.2 s; every ratio is printed, nothing is asserted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+import tarfile
+import tempfile
+import time
+from io import BytesIO
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_arms import measure, planar_spec, puma_spec  # noqa: E402  (a sibling script)
+
+REPEAT_BELOW = 20.0  # seconds: a slower command is run once
+
+
+def wall(cmd: list[str], cwd: Path, repeat: int, timeout: float) -> tuple[float | None, list[float]]:
+    """Median wall time of ``repeat`` fresh runs (one when a run takes REPEAT_BELOW s), None on failure."""
+    times: list[float] = []
+    env = {**os.environ, "PYTHONPATH": str(cwd)}
+    for _ in range(max(repeat, 1)):
+        start = time.perf_counter()
+        try:
+            run = subprocess.run(
+                cmd, cwd=cwd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, timeout=timeout
+            )
+        except subprocess.TimeoutExpired:
+            return None, times
+        elapsed = time.perf_counter() - start
+        if run.returncode != 0:
+            print(f"  failed: {' '.join(cmd[2:])}: {run.stderr.decode()[-300:]}", file=sys.stderr)
+            return None, times
+        times.append(elapsed)
+        if elapsed >= REPEAT_BELOW:
+            break
+    return statistics.median(times), times
+
+
+def extract(rev: str, into: Path) -> Path:
+    """The tree of git revision ``rev`` of this repository, in ``into``."""
+    blob = subprocess.run(["git", "archive", rev], cwd=ROOT, check=True, capture_output=True).stdout
+    with tarfile.open(fileobj=BytesIO(blob)) as tar:
+        tar.extractall(into, filter="data")
+    return into
+
+
+def derivation_time(kind: str, system: str, timeout: float) -> float | None:
+    records, error = measure([kind, system], timeout)
+    if error or not records:
+        print(f"  {kind} {system}: {error}", file=sys.stderr)
+        return None
+    return float(records[0]["time"])
+
+
+def fmt(t: float | None) -> str:
+    return "—" if t is None else (f"{t:.2f} s" if t < 100 else f"{t:.0f} s")
+
+
+def ratio(a: float | None, b: float | None) -> str:
+    return "—" if a is None or b is None or b == 0 else f"{a / b:.2f}×"
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=3, help="fresh runs per command under 20 s (median)")
+    parser.add_argument("--max-n", type=int, default=10, help="largest planar chain (default 10)")
+    parser.add_argument("--baseline", help="git revision to measure the same commands with")
+    parser.add_argument("--timeout", type=float, default=900.0, help="seconds per command")
+    parser.add_argument("--no-spec-arm", action="store_true", help="skip specs/arms/puma560.yaml (puma6 is kept)")
+    opts = parser.parse_args()
+
+    with tempfile.TemporaryDirectory(prefix="tutgen-bench-") as scratch:
+        return run(opts, Path(scratch))
+
+
+def run(opts: argparse.Namespace, tmp: Path) -> int:
+    """Every measurement, with the specs and the baseline's tree in ``tmp`` (removed afterwards)."""
+    py = sys.executable
+    (tmp / "puma6.yaml").write_text(puma_spec(), encoding="utf-8")
+    for n in range(2, opts.max_n + 1):
+        (tmp / f"planar-{n}.yaml").write_text(planar_spec(n), encoding="utf-8")
+    trees = {"now": ROOT}
+    if opts.baseline:
+        trees["before"] = extract(opts.baseline, tmp / "baseline")
+
+    def solve(spec: Path, *fmt_args: str) -> list[str]:
+        return [py, "-m", "tutgen", "solve", str(spec), *fmt_args, "--timeout", str(int(opts.timeout))]
+
+    puma_spec_file = ROOT / "specs" / "arms" / "puma560.yaml"
+    commands: list[tuple[str, list[str]]] = [
+        ("tutgen --help", [py, "-m", "tutgen", "--help"]),
+        ("solve p05 (md)", solve(ROOT / "specs" / "tutorial-1" / "p05-rr-arm.yaml")),
+        ("solve puma6 (md)", solve(tmp / "puma6.yaml")),
+        ("solve puma6 (json)", solve(tmp / "puma6.yaml", "-f", "json")),
+        ("solve puma560.yaml (md)", solve(puma_spec_file)),
+        ("solve puma560.yaml (json)", solve(puma_spec_file, "-f", "json")),
+        *(
+            (f"solve planar-{n} (json)", solve(tmp / f"planar-{n}.yaml", "-f", "json"))
+            for n in range(2, opts.max_n + 1)
+        ),
+    ]
+
+    if opts.no_spec_arm:
+        commands = [(name, cmd) for name, cmd in commands if "puma560.yaml" not in name]
+    print(f"load average at start: {os.getloadavg()[0]:.1f} (2 cores, shared); medians of {opts.repeat} fresh runs")
+    print("\nderivation only, in process (bench_arms.py workers, imports excluded):")
+    kane = derivation_time("kane", "puma6", opts.timeout)
+    expanded = derivation_time("tutgen", "puma6", opts.timeout)
+    program = derivation_time("nested", "puma6", opts.timeout)
+    print(f"  KanesMethod puma6 (bare)            {fmt(kane)}")
+    print(f"  tutgen serial_dynamics puma6        {fmt(expanded)}   Kane / tutgen {ratio(kane, expanded)}")
+    print(f"  tutgen nested_dynamics puma6        {fmt(program)}   Kane / tutgen {ratio(kane, program)}")
+    planar_derive = {n: derivation_time("tutgen", f"planar-{n}", opts.timeout) for n in range(2, opts.max_n + 1)}
+
+    print("\nend to end, fresh process:")
+    head = f"  {'command':<28} {'now':>9}"
+    if "before" in trees:
+        head += f" {'before':>9} {'before/now':>11}"
+    print(head + f" {'now/Kane':>9} {'derive only':>12}")
+    for name, cmd in commands:
+        now, _ = wall(cmd, trees["now"], opts.repeat, opts.timeout)
+        line = f"  {name:<28} {fmt(now):>9}"
+        if "before" in trees:
+            before, _ = wall(cmd, trees["before"], opts.repeat, opts.timeout)
+            line += f" {fmt(before):>9} {ratio(before, now):>11}"
+        derive = None
+        if name.startswith("solve planar-"):
+            derive = planar_derive[int(name.split("-")[1].split()[0])]
+        elif name.startswith("solve puma6"):
+            derive = expanded
+        line += f" {ratio(now, kane) if 'puma' in name else '':>9} {fmt(derive) if derive else '':>12}"
+        print(line, flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

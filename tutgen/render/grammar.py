@@ -1,0 +1,188 @@
+"""Expressions as text in the spec grammar, fast: the printer of the JSON output and of the checker.
+
+sympy's ``StrPrinter`` dispatches every node through its class hierarchy and, with ``order="lex"``,
+re-sorts every sum by its monomials while printing: 337 of the 374 s of the fully symbolic PUMA
+560's JSON (issue 17). :func:`grammar_text` prints a short expression as before (lex order, cheap at
+that size) and walks a long one once (:func:`fast_text`), printing terms and factors in the order of
+the expression's arguments. sympy sorts those when it builds a sum or a product
+(``Basic.compare``: by kind, then by name or value, never by hash), so the text is the same on every
+run, machine and ``PYTHONHASHSEED``; a result's value is unchanged, only its printed order differs
+from the lex order of earlier versions (docs/json-output.md). Repeated subexpressions (a sum that is
+a coefficient of several entries) are printed once (a cache keyed by the expression itself, which
+sympy compares structurally: ``x + 1.0`` and ``x + 1`` are different keys).
+
+The text reads back to the same expression through :func:`tutgen.spec.expr.parse_expression`
+(tests/render/test_grammar.py): ``**`` for powers, ``a/b`` for quotients, ``sqrt(x)``, exact
+fractions, ``exp(1)`` for e; a node outside this small set (a float, a derivative, a piecewise
+function) is printed by sympy's own printer, kept inside the grammar.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import sympy as sp
+from sympy.printing.str import StrPrinter
+
+from tutgen.render.size import lower_bound_exceeds
+
+__all__ = ["LEX_BUDGET", "fast_text", "grammar_text"]
+
+
+class _GrammarPrinter(StrPrinter):
+    """sympy's str printer, kept inside the spec grammar (which has no constant E)."""
+
+    def _print_Exp1(self, expr: sp.Basic) -> str:
+        return "exp(1)"
+
+
+_FALLBACK = _GrammarPrinter({"order": "none"})
+
+# precedence of what a printed text is at its top: a sum, a product or quotient, a power, an atom
+_SUM, _PRODUCT, _POWER, _ATOM = 1, 2, 3, 4
+
+
+#: an expression whose size is at most this (the lower bound of tutgen.render.size, about a third of
+#: its count_ops) is printed by sympy's lex-ordered printer, as before: cheap at this size, and what a
+#: reader of a short result or an answer check's feedback expects (a**2*m, terms by their monomials)
+LEX_BUDGET = 60
+
+_LEX = _GrammarPrinter({"order": "lex"})
+
+
+def grammar_text(expr: sp.Basic) -> str:
+    """An expression in the spec grammar: a short one in sympy's lex order, a long one in the order of
+    its arguments (see the module's docstring).
+
+    >>> x, y = sp.symbols("x y")
+    >>> grammar_text(-x**2 / (2 * y) + sp.sqrt(x) - sp.Rational(1, 3))
+    'sqrt(x) - x**2/(2*y) - 1/3'
+    >>> long = sp.Add(*(sp.Symbol(f"m{i}") * x ** (i % 3) for i in range(70)))
+    >>> grammar_text(long)[:30]
+    'm0 + m12 + m15 + m18 + m21 + m'
+    """
+    if not lower_bound_exceeds([expr], LEX_BUDGET):
+        return _LEX.doprint(expr)
+    return _text(expr)[0]
+
+
+def fast_text(expr: sp.Basic) -> str:
+    """An expression in the spec grammar, always in the order of its arguments (one walk of the tree).
+
+    >>> x, y = sp.symbols("x y")
+    >>> fast_text(-x**2 / (2 * y) + sp.sqrt(x) - sp.Rational(1, 3))
+    '-1/3 + sqrt(x) - x**2/(2*y)'
+    """
+    return _text(expr)[0]
+
+
+def _wrapped(expr: sp.Basic, above: int) -> str:
+    """The text of ``expr``, in parentheses when it binds less tightly than ``above``."""
+    text, level = _text(expr)
+    return f"({text})" if level < above else text
+
+
+@lru_cache(maxsize=1 << 16)
+def _text(expr: sp.Basic) -> tuple[str, int]:
+    """(text, precedence of its top) of one expression."""
+    if expr.is_Symbol:
+        return expr.name, _ATOM
+    if expr.is_Integer:
+        return str(expr), (_ATOM if expr >= 0 else _SUM)
+    if expr.is_Rational:
+        return f"{expr.p}/{expr.q}", (_PRODUCT if expr.p > 0 else _SUM)
+    if expr.is_Add:
+        return _add(expr), _SUM
+    if expr.is_Mul:
+        return _mul(expr)
+    if expr.is_Pow:
+        return _pow(expr)
+    if expr.is_Function and type(expr).__name__ in _FUNCTIONS:
+        return f"{type(expr).__name__}({', '.join(_text(a)[0] for a in expr.args)})", _ATOM
+    text = _FALLBACK.doprint(expr)
+    return text, (_ATOM if expr.is_Atom and not text.startswith("-") else _SUM)
+
+
+# the functions of the spec grammar (tutgen.spec.expr.FUNCTIONS) by the name of their sympy class
+_FUNCTIONS = frozenset(
+    {"sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh", "exp", "log", "atan2", "Abs"}
+)
+
+
+def _negative(term: sp.Basic) -> bool:
+    """A term printed with a minus sign: a negative number, or a product with a negative coefficient."""
+    if term.is_Number:
+        return bool(term.is_negative)
+    return bool(term.is_Mul and term.args[0].is_Number and term.args[0].is_negative)
+
+
+def _add(expr: sp.Basic) -> str:
+    out: list[str] = []
+    for i, term in enumerate(expr.args):
+        if _negative(term):
+            body = _positive_text(term)
+            out.append(f"-{body}" if i == 0 else f" - {body}")
+        else:
+            text = _text(term)[0]  # a term of a sum needs no parentheses
+            out.append(text if i == 0 else f" + {text}")
+    return "".join(out)
+
+
+def _positive_text(term: sp.Basic) -> str:
+    """The text of -term for a negative number or a product with a negative coefficient, as a term of
+    a sum (a product binds tighter than the sign in front of it)."""
+    if term.is_Number:
+        return _text(-term)[0]
+    coeff = -term.args[0]
+    return _product(coeff, term.args[1:])[0]
+
+
+def _mul(expr: sp.Basic) -> tuple[str, int]:
+    args = expr.args
+    if args[0].is_Number:
+        coeff, factors = args[0], args[1:]
+    else:
+        coeff, factors = sp.Integer(1), args
+    if coeff.is_negative:
+        text, _ = _product(-coeff, factors)
+        return f"-{text}", _SUM
+    return _product(coeff, factors)
+
+
+def _product(coeff: sp.Basic, factors: tuple[sp.Basic, ...]) -> tuple[str, int]:
+    """coeff * factors, for a positive number coeff: numerator / denominator, as StrPrinter writes it."""
+    num: list[str] = []
+    den: list[str] = []
+    if coeff.is_Rational:
+        if coeff.p != 1:
+            num.append(str(coeff.p))
+        if coeff.q != 1:
+            den.append(str(coeff.q))
+    elif coeff != 1:
+        num.append(_wrapped(coeff, _PRODUCT + 1))
+    for f in factors:
+        if f.is_Pow and f.exp.is_Rational and f.exp.is_negative:
+            inverse = f.base if f.exp == -1 else sp.Pow(f.base, -f.exp, evaluate=False)
+            den.append(_wrapped(inverse, _PRODUCT + 1))
+        else:
+            num.append(_wrapped(f, _PRODUCT + 1))
+    top = "*".join(num) if num else "1"
+    if not den:
+        return top, _PRODUCT
+    bottom = den[0] if len(den) == 1 else "(" + "*".join(den) + ")"
+    return f"{top}/{bottom}", _PRODUCT
+
+
+def _pow(expr: sp.Basic) -> tuple[str, int]:
+    base, exp = expr.args
+    if base is sp.E:
+        return f"exp({_text(exp)[0]})", _ATOM
+    if exp is sp.S.Half:
+        return f"sqrt({_text(base)[0]})", _ATOM
+    if exp.is_Rational and exp.is_negative:
+        return _product(sp.Integer(1), (expr,))
+    base_text = _wrapped(base, _POWER + 1)
+    if base.is_Number and (base.is_negative or not base.is_Integer):
+        base_text = f"({_text(base)[0]})"
+    exp_text = _text(exp)[0] if (exp.is_Integer and exp >= 0) or exp.is_Symbol else f"({_text(exp)[0]})"
+    return f"{base_text}**{exp_text}", _POWER
