@@ -214,11 +214,16 @@ def test_check_cli_help_mentions_exit_codes() -> None:
     assert (ROOT / "docs" / "check.md").exists()
 
 
-def test_check_cli_without_a_key_grades_the_items_the_spec_asks(tmp_path: Path) -> None:
+def test_check_cli_without_a_key_grades_the_items_the_spec_asks(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     """No marking key: one right answer is not a pass. The items graded are derived from the spec's
     ask, and the report says so, so that an instructor does not take the grade for theirs."""
+    monkeypatch.setattr(tutgen.engine.pipeline, "derive", lambda system, *_, **__: solved(str(P04))[1])
+    spec = tmp_path / "p04.yaml"  # p04 without its marking: (the tutorial's), so nothing states the items
+    spec.write_text(_p04_bare(), encoding="utf-8")
     (one,) = answers(tmp_path, one="kinetic_energy: m*(r**2*theta_dot**2 + r_dot**2)/2\n")
-    result = run("check", P04, one, "--junit", tmp_path / "junit.xml")
+    result = run("check", spec, one, "--junit", tmp_path / "junit.xml")
     assert result.exit_code == EXIT_CHECK_FAILED, result.output
     assert "1 correct, 0 wrong, 9 missing" in result.stdout
     assert "no marking key: 10 items graded, derived from the spec's ask" in result.stdout.replace("\n", " ")
@@ -228,11 +233,19 @@ def test_check_cli_without_a_key_grades_the_items_the_spec_asks(tmp_path: Path) 
     assert note is not None and note.get("value", "").startswith("no marking key: 10 items graded")
 
 
+def _p04_bare() -> str:
+    """p04's text without its editor line and its ``marking:`` (and the comment above it): the system
+    alone, its lines numbered as the tests below expect."""
+    lines = P04.read_text(encoding="utf-8").splitlines(keepends=True)
+    drop = ("# yaml-language-server:", "marking:", "# what tutgen check marks")
+    return "".join(ln for ln in lines if not ln.startswith(drop))
+
+
 def _p04_copy(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, extra: str) -> Path:
-    """A copy of p04 with ``extra`` YAML at its end, derived as p04 (the same system)."""
+    """A copy of p04 (bare) with ``extra`` YAML at its end, derived as p04 (the same system)."""
     monkeypatch.setattr(tutgen.engine.pipeline, "derive", lambda system, *_, **__: solved(str(P04))[1])
     spec = tmp_path / "p04.yaml"
-    spec.write_text(P04.read_text(encoding="utf-8") + extra, encoding="utf-8")
+    spec.write_text(_p04_bare() + extra, encoding="utf-8")
     return spec
 
 
@@ -248,7 +261,7 @@ def test_check_cli_spec_marking_states_the_items(tmp_path: Path, monkeypatch: py
 
 
 def test_check_cli_spec_marking_errors_are_located(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    line = P04.read_text(encoding="utf-8").count("\n") + 2
+    line = _p04_bare().count("\n") + 2
     spec = _p04_copy(tmp_path, monkeypatch, "marking:\n  ask: [H, 'mass_matrix[3,3]']\n  toleranse: {}\n")
     (one,) = answers(tmp_path, one="kinetic_energy: 1\n")
     result = run("check", spec, one)
