@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 import sympy as sp
 
-from tutgen.engine.inertia import BodyInertia, Principal
+from tutgen.engine.inertia import BodyInertia, BodyPrincipal
 from tutgen.engine.kinematics import BodyKinematics
 from tutgen.model.system import System
 
@@ -62,7 +62,7 @@ class Derivation:
 
     system: System
     inertia: tuple[BodyInertia, ...] = ()
-    principal: tuple[Principal | None, ...] = ()  # per body, of the inertia about the body frame's origin
+    principal: tuple[BodyPrincipal, ...] = ()  # per body, about the body frame's origin and about G
     kinematics: tuple[BodyKinematics, ...] = ()
     energies: tuple[BodyEnergy, ...] = ()
     spring_energies: tuple[tuple[str, sp.Expr], ...] = ()

@@ -28,7 +28,7 @@ import sympy as sp
 from tutgen.engine.checks import dimension_checks, matrix_form_checks, verify
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.forces import generalized_forces, rotors, spring_energies
-from tutgen.engine.inertia import BodyInertia, Principal, body_inertia, principal_axes
+from tutgen.engine.inertia import BodyInertia, BodyPrincipal, body_inertia, body_principal
 from tutgen.engine.kinematics import Kinematics
 from tutgen.engine.lagrange import energies, lagrange_equations
 from tutgen.engine.matrix_form import christoffel_symbols, coriolis_terms, equations_of_motion, gravity_vector
@@ -92,18 +92,17 @@ def derive_with_deadline(system: System, method: str = "both", seconds: float | 
         raise
 
 
-def mass_properties(system: System) -> tuple[tuple[BodyInertia, ...], tuple[Principal | None, ...]]:
-    """Stage 1: each body's inertia, and the principal axes of its inertia about the body frame's origin
-    (with the parameters' numeric values, where they have them)."""
+def mass_properties(system: System) -> tuple[tuple[BodyInertia, ...], tuple[BodyPrincipal, ...]]:
+    """Stage 1: each body's inertia, and its principal axes about the body frame's origin and about its
+    centre of mass (with the parameters' numeric values, where they have them)."""
     checkpoint("inertia")
     inertia = tuple(body_inertia(b) for b in system.bodies)
-    values = system.values
-    principal = tuple(principal_axes(bi.inertia_origin.subs(values) if values else bi.inertia_origin) for bi in inertia)
+    principal = tuple(body_principal(bi, system.values) for bi in inertia)
     return inertia, principal
 
 
 def _general_route(
-    system: System, method: str, inertia: tuple[BodyInertia, ...], principal: tuple[Principal | None, ...]
+    system: System, method: str, inertia: tuple[BodyInertia, ...], principal: tuple[BodyPrincipal, ...]
 ) -> Derivation:
     """Stages 2-8 for any tree of joints, bodies placed by position, or a given T and U."""
     q = [c.q for c in system.coordinates]
@@ -185,7 +184,7 @@ def _general_route(
 
 
 def _serial_route(
-    system: System, method: str, inertia: tuple[BodyInertia, ...], principal: tuple[Principal | None, ...]
+    system: System, method: str, inertia: tuple[BodyInertia, ...], principal: tuple[BodyPrincipal, ...]
 ) -> Derivation:
     """A large serial arm: H, C, G, Q, the equations of motion and the Christoffel symbols, with empty
     ``lagrange_terms`` and no Newton-Euler (see ``REMARK_FAST_PATH``).

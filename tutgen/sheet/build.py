@@ -123,13 +123,13 @@ def substituted(derivation: Derivation, system: Any) -> VariantDerivation:
     Everything the engine derives is symbolic in the parameters, except the principal moments and axes,
     which it computes from the numbers: those are computed again, as the engine does, from this system.
     """
-    from tutgen.engine.inertia import principal_axes
+    from tutgen.engine.inertia import body_principal
 
     fields = {f.name: getattr(derivation, f.name) for f in dataclasses.fields(Derivation)}
     fields["system"] = system
     if system.values != derivation.system.values:
         values = system.values
-        fields["principal"] = tuple(principal_axes(bi.inertia_origin.subs(values)) for bi in derivation.inertia)
+        fields["principal"] = tuple(body_principal(bi, values) for bi in derivation.inertia)
     return VariantDerivation(**fields)
 
 
