@@ -145,7 +145,7 @@ def _general_route(
     checks = matrix_form_checks(system, hm, c_mat, eom, eom_lagrange)
     det = tidy(hm.det(method="berkowitz")) if len(q) <= 4 else None
     remarks += degeneracy_remarks(system, hm, det, t_total, u_total, forces, eom)
-    remarks += zero_remarks(system, inertia, u_total, forces)
+    remarks += zero_remarks(system, inertia, u_total, forces, energy.bodies)
     if all(first[key] == 0 for key in first):
         remarks.append(REMARK_CONSTANT_MASS_MATRIX)
     derivation = Derivation(
