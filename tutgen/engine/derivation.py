@@ -18,6 +18,7 @@ from tutgen.model.system import System
 
 if TYPE_CHECKING:  # newton_euler.py imports this module
     from tutgen.engine.newton_euler import NewtonEuler
+    from tutgen.engine.potential import PotentialSource
     from tutgen.engine.recursive import NestedDynamics
 
 
@@ -66,6 +67,7 @@ class Derivation:
     kinematics: tuple[BodyKinematics, ...] = ()
     energies: tuple[BodyEnergy, ...] = ()
     spring_energies: tuple[tuple[str, sp.Expr], ...] = ()
+    potential_sources: tuple[PotentialSource, ...] = ()  # U term by term, each with its datum
     kinetic_energy: sp.Expr | None = None
     potential_energy: sp.Expr | None = None
     lagrangian: sp.Expr | None = None

@@ -33,6 +33,7 @@ from tutgen.engine.kinematics import Kinematics
 from tutgen.engine.lagrange import energies, lagrange_equations
 from tutgen.engine.matrix_form import christoffel_symbols, coriolis_terms, equations_of_motion, gravity_vector
 from tutgen.engine.newton_euler import derive_newton_euler
+from tutgen.engine.potential import potential_sources
 from tutgen.engine.recursive import nested_dynamics
 from tutgen.engine.remarks import REMARK_CONSTANT_MASS_MATRIX, degeneracy_remarks, rotor_remark, zero_remarks
 from tutgen.engine.serial import REMARK_FAST_PATH, is_large_serial_chain, serial_checks, serial_dynamics
@@ -155,6 +156,7 @@ def _general_route(
         kinematics=energy.kinematics,
         energies=energy.bodies,
         spring_energies=springs,
+        potential_sources=potential_sources(system, energy.bodies, springs, kin),
         kinetic_energy=t_total,
         potential_energy=u_total,
         lagrangian=lagrangian,
