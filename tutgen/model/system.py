@@ -200,6 +200,13 @@ class Ask(StrEnum):
 
 
 @dataclass(frozen=True)
+class Given:
+    """What a question states besides its statement and data (the spec's ``given:``)."""
+
+    coordinates: bool = True  # False: the question leaves the generalized coordinates to the student
+
+
+@dataclass(frozen=True)
 class System:
     """A validated problem, ready to derive."""
 
@@ -222,6 +229,8 @@ class System:
     # how many significant figures decimals are printed with (None: the renderer's default, 4)
     significant_figures: int | None = None
     figure: FigureConfig | None = None  # the spec's `figure:` section (drawing configuration, own picture)
+    question_title: str | None = None  # the question sheet's title, when it differs from ``title``
+    given: Given = field(default_factory=Given)
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

@@ -217,10 +217,11 @@ def has_figure(system: Any) -> bool:
 def _figures(shared: Shared, systems: Sequence[Any]) -> dict[str, tuple[str, str]]:
     """Problem key -> (file name, SVG) of the figures a Markdown sheet shows beside its problems."""
     from tutgen.figure.view import svg_file
+    from tutgen.sheet.render import as_set
 
     out: dict[str, tuple[str, str]] = {}
     for base, system in zip(shared.problems, systems, strict=True):
-        made = svg_file(system) if has_figure(system) else None
+        made = svg_file(as_set(system)) if has_figure(system) else None
         if made is not None:
             out[base.key] = (figure_name(base.key), made[1])
     return out
