@@ -80,7 +80,14 @@ def _value(c: SolutionContext, expr: Any, unit: str) -> str:
 def _moment_line(c: SolutionContext, f: ShapeFormula, label: str, formula: sp.Expr) -> str:
     """``J_{G,xx} = m(b^2 + c^2)/12 = 0.006132 kg m^2`` (a rod's axial moment: ``J_{G,xx} = 0``)."""
     value = _value(c, formula.subs(dict(f.symbols)), INERTIA)
-    return f"{_entry('G', label)} = " + (f"{sp.latex(formula)} = {value}" if formula != 0 else value)
+    if formula == 0:
+        return f"{_entry('G', label)} = {value}"
+    numbers = {sym: as_number(c.num(v)) for sym, v in f.symbols}
+    forms = [sp.latex(formula)]
+    if all(not n.free_symbols for n in numbers.values()):  # the formula with the part's numbers put in
+        names = {sym: c.tex(n) for sym, n in numbers.items()}  # sympy brackets a name with a power
+        forms.append(sp.latex(formula, symbol_names=names, mul_symbol="dot"))
+    return f"{_entry('G', label)} = " + " = ".join([*forms, value])
 
 
 def _chain(c: SolutionContext, name: str, expr: sp.Expr, unit: str) -> str:
@@ -154,7 +161,7 @@ def _shift_line(c: SolutionContext, p: PartInertia, k: int) -> str:
         used = [m for m in range(3) if m != i and d[m] != 0]
         symbolic = "m\\,(" + " + ".join(f"d_{AXES[m]}^2" for m in range(3) if m != i) + ")"
         numbers = " + ".join(f"{_paren(tex(d[m]))}^2" for m in used)
-        term = (f"{mass}\\,({numbers})" if len(used) > 1 else f"{mass}\\,{numbers}") if used else "0"
+        term = (f"{mass} \\cdot ({numbers})" if len(used) > 1 else f"{mass} \\cdot {numbers}") if used else "0"
         sign = " + "
     else:
         symbolic = f"m\\,d_{AXES[i]} d_{AXES[j]}"
@@ -167,8 +174,10 @@ def _shift_line(c: SolutionContext, p: PartInertia, k: int) -> str:
 
 
 def _paren(printed: str) -> str:
-    """A printed factor in brackets when it is a sum or negative, so that a square reads right."""
-    return f"({printed})" if printed.startswith("-") or " + " in printed or " - " in printed else printed
+    """A printed factor in brackets when it is a sum, negative, a power or in engineering notation
+    (``375 \\times 10^{-6}``), so that a square reads right and TeX sees no double superscript."""
+    bracketed = printed.startswith("-") or any(op in printed for op in (" + ", " - ", "\\times", "^", "\\frac"))
+    return f"\\left({printed}\\right)" if bracketed else printed
 
 
 def _body_blocks(c: SolutionContext, bi: BodyInertia) -> list[Block]:

@@ -27,15 +27,18 @@ def kinematics(c: SolutionContext) -> dict[str, Any] | None:
     )
     for k, e in zip(d.kinematics, d.energies, strict=True):
         name = tex_name(k.name)
-        sec["blocks"].append(
-            display(f"\\mathbf r_{{{name}}} = {tex(num(k.com))},\\quad \\mathbf v_{{{name}}} = {tex(num(k.velocity))}")
-        )
+        placed = f"\\mathbf r_{{{name}}} = {tex(num(k.com))},\\quad \\mathbf v_{{{name}}} = {tex(num(k.velocity))}"
+        if k.speed is None or not k.speed.identities:  # v^2 needs no working: on the same line
+            sec["blocks"].append(display(f"{placed},\\quad " + tex.equation(f"v_{{{name}}}^2", num(e.speed_squared))))
+            continue
+        sec["blocks"].append(display(placed))
         sec["blocks"] += _speed_blocks(c, k, name, num(e.speed_squared))
     return sec
 
 
 def _speed_blocks(c: SolutionContext, k: BodyKinematics, name: str, final: Any) -> list[Block]:
-    """``v^2 = v_x^2 + v_y^2 = (…)^2 + (…)^2 = …``, and the identities that shortened it."""
+    """``v^2 = v_x^2 + v_y^2 = (…)^2 + (…)^2 = …``, and the identities that shortened it (a body whose v^2
+    needs none has it beside its velocity instead)."""
     tex, num = c.tex, c.num
     head = f"v_{{{name}}}^2"
     steps = k.speed
