@@ -87,3 +87,19 @@ def test_speed_squared_sine_difference() -> None:
     steps = speed_squared_steps(u)
     assert RULE_SIN_DIFFERENCE in {i.rule for i in steps.identities}
     assert sp.simplify(steps.result - (2 * w**2 + 2 * w**2 * sp.sin(t1 - t2))) == 0
+
+
+def test_speed_squared_identity_on_the_shared_part_of_the_coefficients() -> None:
+    """A tilting plate (examples/c): sin^2 theta carries psi_dot^2 + theta_dot^2, cos^2 theta only
+    theta_dot^2; sin^2 + cos^2 = 1 applies to the theta_dot^2 they share."""
+    e, th, ps, wt, wp = sp.symbols("e theta psi theta_dot psi_dot")
+    v = sp.Matrix(
+        [
+            e * sp.sin(th) * sp.cos(ps) * wp + e * sp.sin(ps) * sp.cos(th) * wt,
+            e * sp.sin(ps) * sp.sin(th) * wp - e * sp.cos(ps) * sp.cos(th) * wt,
+            -e * sp.sin(th) * wt,
+        ]
+    )
+    steps = speed_squared_steps(v)
+    assert sp.expand(steps.result - (e**2 * sp.sin(th) ** 2 * wp**2 + e**2 * wt**2)) == 0
+    assert {i.lhs for i in steps.identities} == {sp.sin(th) ** 2 + sp.cos(th) ** 2, sp.sin(ps) ** 2 + sp.cos(ps) ** 2}

@@ -107,7 +107,7 @@ def speed_squared_steps(velocity: sp.MatrixBase) -> SpeedSquared | None:
     """v . v with the identities a teacher uses, or None when the velocity is too long to work through.
 
     The expansion is a polynomial in the sines and cosines of its angles; the identities are applied
-    where their two products carry the same coefficient: sin^2 A + cos^2 A = 1,
+    to the part of the coefficients their two products share: sin^2 A + cos^2 A = 1,
     cos A cos B + sin A sin B = cos(A - B) and sin A cos B - cos A sin B = sin(A - B).
 
     Examples
@@ -135,8 +135,15 @@ def speed_squared_steps(velocity: sp.MatrixBase) -> SpeedSquared | None:
     extra: list[sp.Expr] = []
     used: list[Identity] = []
 
-    def same(a: sp.Expr, b: sp.Expr) -> bool:
-        return sp.expand(a - b) == 0
+    def common(a: sp.Expr, b: sp.Expr) -> sp.Expr:
+        """The terms two coefficients share (the part of a pair of products an identity can shorten)."""
+        others = set(sp.Add.make_args(sp.expand(b)))
+        return sp.Add(*[t for t in sp.Add.make_args(sp.expand(a)) if t in others])
+
+    def take(exps: tuple[int, ...], amount: sp.Expr) -> None:
+        left = sp.expand(terms.pop(exps) - amount)
+        if left != 0:
+            terms[exps] = left
 
     def monomial(exps: tuple[int, ...]) -> sp.Expr:
         return sp.Mul(*[f**e for f, e in zip(trig, exps, strict=True)])
@@ -161,11 +168,12 @@ def speed_squared_steps(velocity: sp.MatrixBase) -> SpeedSquared | None:
                 partner[si] -= 2
                 partner[ci] += 2
                 partner_t = tuple(partner)
-                if partner_t in terms and same(terms[exps], terms[partner_t]):
+                coeff = common(terms[exps], terms[partner_t]) if partner_t in terms else sp.Integer(0)
+                if coeff != 0:
                     rest = list(exps)
                     rest[si] -= 2
-                    coeff = terms.pop(exps)
-                    terms.pop(partner_t)
+                    take(exps, coeff)
+                    take(partner_t, coeff)
                     terms[tuple(rest)] = terms.get(tuple(rest), sp.Integer(0)) + coeff
                     note(Identity(RULE_PYTHAGORAS, sp.sin(a) ** 2 + sp.cos(a) ** 2, sp.Integer(1)))
                     changed = True
@@ -185,12 +193,13 @@ def speed_squared_steps(velocity: sp.MatrixBase) -> SpeedSquared | None:
                         partner[sa] += 1
                         partner[sb] += 1
                         partner_t = tuple(partner)
-                        if partner_t in terms and same(terms[exps], terms[partner_t]):
+                        coeff = common(terms[exps], terms[partner_t]) if partner_t in terms else sp.Integer(0)
+                        if coeff != 0:
                             rest = list(exps)
                             rest[ca] -= 1
                             rest[cb] -= 1
-                            coeff = terms.pop(exps)
-                            terms.pop(partner_t)
+                            take(exps, coeff)
+                            take(partner_t, coeff)
                             extra.append(coeff * monomial(tuple(rest)) * sp.cos(a - b))
                             lhs = sp.cos(a) * sp.cos(b) + sp.sin(a) * sp.sin(b)
                             note(Identity(RULE_COS_DIFFERENCE, lhs, sp.cos(a - b)))
@@ -203,12 +212,13 @@ def speed_squared_steps(velocity: sp.MatrixBase) -> SpeedSquared | None:
                         partner[ca] += 1
                         partner[sb] += 1
                         partner_t = tuple(partner)
-                        if partner_t in terms and same(terms[exps], -terms[partner_t]):
+                        coeff = common(terms[exps], -terms[partner_t]) if partner_t in terms else sp.Integer(0)
+                        if coeff != 0:
                             rest = list(exps)
                             rest[sa] -= 1
                             rest[cb] -= 1
-                            coeff = terms.pop(exps)
-                            terms.pop(partner_t)
+                            take(exps, coeff)
+                            take(partner_t, -coeff)
                             extra.append(coeff * monomial(tuple(rest)) * sp.sin(a - b))
                             lhs = sp.sin(a) * sp.cos(b) - sp.cos(a) * sp.sin(b)
                             note(Identity(RULE_SIN_DIFFERENCE, lhs, sp.sin(a - b)))

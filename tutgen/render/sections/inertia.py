@@ -5,6 +5,7 @@ the body frame's origin O and about the centre of mass G, each labelled with its
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 import sympy as sp
@@ -114,16 +115,17 @@ def _part_blocks(c: SolutionContext, bi: BodyInertia, p: PartInertia) -> list[Bl
     out += [display(ch) for ch in chains if ch]
     f = p.formula
     if f is not None:
-        symbols = ",\\ ".join(
-            f"{sp.latex(sym)} = {_value(c, val, MASS if str(sym) == 'm' else LENGTH)}" for sym, val in f.symbols
+        symbols = ",\\ ".join(  # "h = h" (a parameter of the shape's own name) says nothing: left out
+            f"{sp.latex(sym)} = {shown}"
+            for sym, val in f.symbols
+            if (shown := _value(c, val, MASS if str(sym) == "m" else LENGTH)) != sp.latex(sym)
         )
         words = _SYMBOL_WORDS.get(p.shape, "")
         axis = ""
         if f.axis is not None:
             axis = f", its axis along ${tex(as_number(num(f.axis.T)))}$"
-        out.append(
-            para(text("About its centroid, by its shape's formulas ("), math(symbols), prose(f"; {words}{axis}):"))
-        )
+        given = [math(symbols), text("; ")] if symbols else []
+        out.append(para(text("About its centroid, by its shape's formulas ("), *given, prose(f"{words}{axis}):")))
         out.append(stacked([_moment_line(c, f, label, formula) for label, formula in f.moments]))
         if f.turned:
             out.append(para(text("In the body's axes:")))
@@ -173,11 +175,14 @@ def _shift_line(c: SolutionContext, p: PartInertia, k: int) -> str:
     )
 
 
+#: a printed factor that needs no brackets before a power: a plain number or one (indexed) name
+_ATOM = re.compile(r"[0-9.]+|\\?[A-Za-z]+(_\{?[A-Za-z0-9]+\}?)?")
+
+
 def _paren(printed: str) -> str:
     """A printed factor in brackets when it is a sum, negative, a power or in engineering notation
     (``375 \\times 10^{-6}``), so that a square reads right and TeX sees no double superscript."""
-    bracketed = printed.startswith("-") or any(op in printed for op in (" + ", " - ", "\\times", "^", "\\frac"))
-    return f"\\left({printed}\\right)" if bracketed else printed
+    return printed if _ATOM.fullmatch(printed) else f"\\left({printed}\\right)"
 
 
 def _body_blocks(c: SolutionContext, bi: BodyInertia) -> list[Block]:
