@@ -28,8 +28,11 @@ from tutgen.render.blocks import (
     text,
     unit_tex,
 )
+from tutgen.render.layout import LINE_WIDTH_PT, tex_width
 
 MASS, LENGTH, VOLUME, INERTIA = "kg", "m", "m^3", "kg*m^2"
+#: the widest matrix m(|r_G|^2 E - r_G r_G^T) printed in the shift to the centre of mass
+SHIFT_WIDTH = 0.5 * LINE_WIDTH_PT
 
 #: what the symbols of a shape's formula stand for, as the solution says it
 _SYMBOL_WORDS = {
@@ -223,12 +226,12 @@ def _body_blocks(c: SolutionContext, bi: BodyInertia) -> list[Block]:
                 para(text("The centre of mass is the part's centroid, and "), math("J_G"), text(" its tensor above."))
             )
         elif any(x != 0 for x in bi.com):
-            out.append(
-                display(
-                    "J_G = J_O - m\\,(|\\mathbf r_G|^2 E - \\mathbf r_G \\mathbf r_G^T) = "
-                    f"J_O - {tex(as_number(num(bi.com_shift)))} = {_value(c, bi.inertia_com, INERTIA)}"
-                )
-            )
+            rule = "J_G = J_O - m\\,(|\\mathbf r_G|^2 E - \\mathbf r_G \\mathbf r_G^T)"
+            shift = tex(as_number(num(bi.com_shift)))
+            result = _value(c, bi.inertia_com, INERTIA)
+            # the shift's matrix only where it fits on a line (a symbolic one is shown by its result alone)
+            middle = f" = J_O - {shift}" if tex_width(shift) <= SHIFT_WIDTH else ""
+            out.append(display(f"{rule}{middle} = {result}"))
         else:
             out.append(para(text("The centre of mass is at O, so "), math("J_G = J_O"), text(".")))
     return out

@@ -7,6 +7,10 @@ from typing import Any
 
 from tutgen.engine.kinematics import RULE_COS_DIFFERENCE, RULE_PYTHAGORAS, RULE_SIN_DIFFERENCE, BodyKinematics
 from tutgen.render.blocks import Block, Part, SolutionContext, display, math, para, section, tex_name, text
+from tutgen.render.layout import LINE_WIDTH_PT, tex_width
+
+#: the widest squared component shown in the working of v^2 (the rest of its row is the relation)
+SQUARE_WIDTH = 0.8 * LINE_WIDTH_PT
 
 #: each identity's general form, as the solution names it
 RULE_TEX = {
@@ -48,7 +52,10 @@ def _speed_blocks(c: SolutionContext, k: BodyKinematics, name: str, final: Any) 
     if not shown:
         return [display(f"{head} = 0")]
     forms = [" + ".join(f"v_{axis}^2" for axis, _ in shown)]
-    forms.append(" + ".join(f"\\left({tex(num(comp))}\\right)^2" for _, comp in shown))
+    squares = [f"\\left({tex(num(comp))}\\right)^2" for _, comp in shown]
+    # a square is broken only between its terms' brackets, never inside: one too wide is left out
+    if all(tex_width(sq) <= SQUARE_WIDTH for sq in squares):
+        forms.append(" + ".join(squares))
     result = tex.ordered(num(steps.result))
     final_tex = tex.ordered(final)
     forms.append(result)
