@@ -111,9 +111,10 @@ def test_substitution_equals_a_fresh_derivation_of_the_concrete_spec(key: str, v
     assert pairs
     assert d.remarks == reference.remarks
     for mine_p, theirs_p in zip(d.principal, reference.principal, strict=True):
-        assert (mine_p is None) == (theirs_p is None)
-        if mine_p is not None:
-            assert mine_p.moments == pytest.approx(theirs_p.moments, rel=1e-12)
+        for mine_at, theirs_at in ((mine_p.origin, theirs_p.origin), (mine_p.com, theirs_p.com)):
+            assert (mine_at is None) == (theirs_at is None)
+            if mine_at is not None:
+                assert mine_at.moments == pytest.approx(theirs_at.moments, rel=1e-12)
     for mine, theirs in pairs:
         # the symbols' assumptions may differ (positive or real), so compare by name
         names = {s: sp.Symbol(s.name) for s in mine.free_symbols | theirs.free_symbols}

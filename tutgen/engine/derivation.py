@@ -13,13 +13,14 @@ from typing import TYPE_CHECKING
 
 import sympy as sp
 
-from tutgen.engine.inertia import BodyInertia, Principal
+from tutgen.engine.inertia import BodyInertia, BodyPrincipal
 from tutgen.engine.kinematics import BodyKinematics
 from tutgen.engine.steps import Step
 from tutgen.model.system import Method, System
 
 if TYPE_CHECKING:  # newton_euler.py imports this module
     from tutgen.engine.newton_euler import NewtonEuler
+    from tutgen.engine.potential import PotentialSource
     from tutgen.engine.recursive import NestedDynamics
 
 
@@ -64,10 +65,11 @@ class Derivation:
 
     system: System
     inertia: tuple[BodyInertia, ...] = ()
-    principal: tuple[Principal | None, ...] = ()  # per body, of the inertia about the body frame's origin
+    principal: tuple[BodyPrincipal, ...] = ()  # per body, about the body frame's origin and about G
     kinematics: tuple[BodyKinematics, ...] = ()
     energies: tuple[BodyEnergy, ...] = ()
     spring_energies: tuple[tuple[str, sp.Expr], ...] = ()
+    potential_sources: tuple[PotentialSource, ...] = ()  # U term by term, each with its datum
     kinetic_energy: sp.Expr | None = None
     potential_energy: sp.Expr | None = None
     lagrangian: sp.Expr | None = None

@@ -17,6 +17,51 @@ from tutgen.model.system import Body, Part, Shape
 
 E3 = sp.ImmutableMatrix(sp.eye(3))
 ZERO3 = sp.ImmutableMatrix.zeros(3, 1)
+ZERO33 = sp.ImmutableMatrix.zeros(3, 3)
+
+
+#: the six independent entries of a symmetric tensor, as (label, row, column)
+ENTRIES: tuple[tuple[str, int, int], ...] = (
+    ("xx", 0, 0),
+    ("yy", 1, 1),
+    ("zz", 2, 2),
+    ("xy", 0, 1),
+    ("yz", 1, 2),
+    ("zx", 2, 0),
+)
+AXES = "xyz"
+
+
+@dataclass(frozen=True)
+class ShapeFormula:
+    """A primitive's textbook moments about its centroid, in the shape's own symbols.
+
+    ``symbols`` pairs each symbol of the formulas (``m``, ``a``, ``r``, ...) with the part's value of it;
+    ``moments`` are (label, formula): ``("xx", m*(b**2 + c**2)/12)``. A label names body axes (``xx``)
+    when the shape's axes are the body's, or the shape's own (``axial``, ``transverse``; a turned box's
+    ``x'x'``) when they are not; ``turned`` says the tensor is then turned into the body's axes.
+    """
+
+    symbols: tuple[tuple[sp.Symbol, sp.Expr], ...]
+    moments: tuple[tuple[str, sp.Expr], ...]
+    turned: bool = False
+    axis: sp.ImmutableMatrix | None = None  # the symmetry axis in body axes (axisymmetric shapes)
+
+
+@dataclass(frozen=True)
+class AxisShift:
+    """One entry of the parallel-axis theorem, J_O,ab = J_G,ab + term.
+
+    For a moment (``xx``) the term is m d^2 with d^2 the squared distance between the parallel axes
+    (d_y^2 + d_z^2 for x); for a product entry (``xy``) it is -m d_x d_y (J_ab holds minus the product of
+    inertia). ``distance_squared`` is d^2, or d_a d_b for a product entry.
+    """
+
+    label: str
+    centroidal: sp.Expr
+    distance_squared: sp.Expr
+    term: sp.Expr
+    value: sp.Expr
 
 
 @dataclass(frozen=True)
@@ -31,6 +76,17 @@ class PartInertia:
     inertia_centroid: sp.ImmutableMatrix  # about the part's centroid, body axes
     axis_distances: tuple[sp.Expr, sp.Expr, sp.Expr]  # from the centroid to the body's x, y, z axes
     inertia_origin: sp.ImmutableMatrix  # about the body frame's origin (parallel-axis theorem)
+    formula: ShapeFormula | None = None  # None: a point (no own inertia) or a tensor given directly
+    shifts: tuple[AxisShift, ...] = ()  # the six entries of the shift to the origin (ENTRIES order)
+
+
+@dataclass(frozen=True)
+class CompositeEntry:
+    """One entry of a composite body's tensor about the origin: the parts' values and their sum."""
+
+    label: str
+    terms: tuple[sp.Expr, ...]  # per part, in spec order
+    total: sp.Expr
 
 
 @dataclass(frozen=True)
@@ -43,6 +99,15 @@ class BodyInertia:
     inertia_origin: sp.ImmutableMatrix
     inertia_com: sp.ImmutableMatrix
     parts: tuple[PartInertia, ...]
+    first_moment: sp.ImmutableMatrix = ZERO3  # sum of m_p r_p, so com = first_moment / mass
+    composite: tuple[CompositeEntry, ...] = ()  # J_O entry by entry as the sum of its parts (ENTRIES order)
+    # m(|c|^2 E - c c^T), c the centre of mass: J_G = J_O - com_shift (the parallel-axis theorem backwards)
+    com_shift: sp.ImmutableMatrix = ZERO33
+
+    @property
+    def products_origin(self) -> tuple[tuple[str, sp.Expr], ...]:
+        """The products of inertia about the origin, P_ab = integral a b dm = -J_ab (xy, yz, zx)."""
+        return tuple((label, -self.inertia_origin[i, j]) for label, i, j in ENTRIES[3:])
 
 
 def shift_inertia(inertia: sp.MatrixBase, mass: sp.Expr, d: sp.MatrixBase) -> sp.ImmutableMatrix:
@@ -132,6 +197,93 @@ def centroidal_inertia(part: Part, mass: sp.Expr) -> sp.ImmutableMatrix:
     raise AssertionError(f"unhandled shape {shape}")  # pragma: no cover
 
 
+def _axis_label(axis: sp.MatrixBase | None) -> int | None:
+    """The index of the body axis a unit symmetry axis lies along (either sense), or None."""
+    if axis is None:
+        return None
+    a = list(axis)
+    hits = [k for k in range(3) if a[k] != 0]
+    return hits[0] if len(hits) == 1 else None
+
+
+def shape_formula(part: Part, mass: sp.Expr) -> ShapeFormula | None:
+    """The textbook formulas of a primitive's centroidal moments, in its own symbols (None for a point,
+    whose own inertia is zero, and for a tensor given directly).
+
+    Examples
+    ========
+    >>> from tutgen.model.system import Part, Shape
+    >>> from tutgen.errors import Location
+    >>> box = Part("b", Shape.BOX, sp.Integer(2), None, (("size", (1, 2, 3)),), sp.ImmutableMatrix([0, 0, 0]),
+    ...            None, sp.ImmutableMatrix(sp.eye(3)), None, Location("<t>"))
+    >>> shape_formula(box, sp.Integer(2)).moments[0]
+    ('xx', m*(b**2 + c**2)/12)
+    """
+    dims = dict(part.dimensions)
+    m = sp.Symbol("m")
+    shape = part.shape
+    if shape in (Shape.POINT, Shape.GENERAL):
+        return None
+    if shape is Shape.BOX:
+        a, b, c = sp.symbols("a b c")
+        sizes = dims["size"]
+        turned = sp.Matrix(part.rotation) != sp.eye(3)
+        names = ("x'x'", "y'y'", "z'z'") if turned else ("xx", "yy", "zz")
+        moments = (m * (b**2 + c**2) / 12, m * (a**2 + c**2) / 12, m * (a**2 + b**2) / 12)
+        return ShapeFormula(
+            ((m, mass), (a, sizes[0]), (b, sizes[1]), (c, sizes[2])),  # type: ignore[index]
+            tuple(zip(names, moments, strict=True)),
+            turned,
+        )
+    r = sp.Symbol("r")
+    if shape is Shape.SPHERE:
+        return ShapeFormula(((m, mass), (r, dims["radius"])), (("xx = yy = zz", sp.Rational(2, 5) * m * r**2),))  # type: ignore[arg-type]
+    if shape is Shape.SPHERICAL_SHELL:
+        return ShapeFormula(((m, mass), (r, dims["radius"])), (("xx = yy = zz", sp.Rational(2, 3) * m * r**2),))  # type: ignore[arg-type]
+    h = sp.Symbol("h")
+    if shape is Shape.CYLINDER:
+        symbols = ((m, mass), (r, dims["radius"]), (h, dims["length"]))
+        axial, transverse = m * r**2 / 2, m * (3 * r**2 + h**2) / 12
+    elif shape is Shape.HOLLOW_CYLINDER:
+        ro, ri = sp.symbols("r_o r_i")
+        symbols = ((m, mass), (ro, dims["outer_radius"]), (ri, dims["inner_radius"]), (h, dims["length"]))
+        axial, transverse = m * (ro**2 + ri**2) / 2, m * (3 * (ro**2 + ri**2) + h**2) / 12
+    elif shape is Shape.THIN_CYLINDER:
+        symbols = ((m, mass), (r, dims["radius"]), (h, dims["length"]))
+        axial, transverse = m * r**2, m * (6 * r**2 + h**2) / 12
+    elif shape is Shape.ROD:
+        ell = sp.Symbol("l")
+        symbols = ((m, mass), (ell, dims["length"]))
+        axial, transverse = sp.Integer(0), m * ell**2 / 12
+    elif shape is Shape.DISC:
+        symbols = ((m, mass), (r, dims["radius"]))
+        axial, transverse = m * r**2 / 2, m * r**2 / 4
+    else:  # pragma: no cover
+        raise AssertionError(f"unhandled shape {shape}")
+    k = _axis_label(part.axis)
+    if k is None:
+        labels = ("axial", "transverse")
+    else:
+        others = [AXES[i] * 2 for i in range(3) if i != k]
+        labels = (AXES[k] * 2, f"{others[0]} = {others[1]}")
+    return ShapeFormula(symbols, ((labels[0], axial), (labels[1], transverse)), k is None, part.axis)  # type: ignore[arg-type]
+
+
+def axis_shifts(j_c: sp.MatrixBase, mass: sp.Expr, d: sp.MatrixBase) -> tuple[AxisShift, ...]:
+    """The parallel-axis theorem entry by entry (ENTRIES order): J_O,aa = J_G,aa + m (d_b^2 + d_c^2) and
+    J_O,ab = J_G,ab - m d_a d_b, with d from the origin to the centroid."""
+    out = []
+    for label, i, j in ENTRIES:
+        if i == j:
+            d2 = sp.Add(*[d[k] ** 2 for k in range(3) if k != i])
+            term = mass * d2
+        else:
+            d2 = d[i] * d[j]
+            term = -mass * d2
+        out.append(AxisShift(label, j_c[i, j], d2, term, sp.expand(j_c[i, j] + term)))
+    return tuple(out)
+
+
 def part_inertia(part: Part) -> PartInertia:
     mass, volume = part_mass(part)
     j_c = centroidal_inertia(part, mass)
@@ -150,6 +302,8 @@ def part_inertia(part: Part) -> PartInertia:
         inertia_centroid=j_c,
         axis_distances=distances,
         inertia_origin=shift_inertia(j_c, mass, part.at),
+        formula=shape_formula(part, mass),
+        shifts=axis_shifts(j_c, mass, part.at),
     )
 
 
@@ -157,17 +311,30 @@ def body_inertia(body: Body) -> BodyInertia:
     """Sum the parts about the body frame's origin, then shift to the centre of mass."""
     parts = tuple(part_inertia(p) for p in body.parts)
     mass = sp.expand(sum((p.mass for p in parts), sp.Integer(0)))
-    first_moment = sum((p.mass * sp.Matrix(p.centroid) for p in parts), sp.zeros(3, 1))
+    first_moment = sp.ImmutableMatrix(sum((p.mass * sp.Matrix(p.centroid) for p in parts), sp.zeros(3, 1)))
     if mass == 0:
         com = ZERO3
     else:
         com = sp.ImmutableMatrix((first_moment / mass).applyfunc(sp.factor_terms))
     j_o = sp.ImmutableMatrix(sum((sp.Matrix(p.inertia_origin) for p in parts), sp.zeros(3, 3)))
+    composite = tuple(
+        CompositeEntry(label, tuple(p.inertia_origin[i, j] for p in parts), j_o[i, j]) for label, i, j in ENTRIES
+    )
     # J_O = J_G + m(|c|^2 E - c c^T)  =>  J_G = J_O - m(|c|^2 E - c c^T)
     c = sp.Matrix(com)
-    shift = mass * ((c.T * c)[0] * sp.eye(3) - c * c.T)
+    shift = (mass * ((c.T * c)[0] * sp.eye(3) - c * c.T)).applyfunc(lambda e: sp.cancel(sp.expand(e)))
     j_g = sp.ImmutableMatrix((sp.Matrix(j_o) - shift).applyfunc(lambda e: sp.cancel(sp.expand(e))))
-    return BodyInertia(name=body.name, mass=mass, com=com, inertia_origin=j_o, inertia_com=j_g, parts=parts)
+    return BodyInertia(
+        name=body.name,
+        mass=mass,
+        com=com,
+        inertia_origin=j_o,
+        inertia_com=j_g,
+        parts=parts,
+        first_moment=first_moment,
+        composite=composite,
+        com_shift=sp.ImmutableMatrix(shift),
+    )
 
 
 @dataclass(frozen=True)
@@ -176,6 +343,24 @@ class Principal:
 
     moments: tuple[float, float, float]
     axes: tuple[tuple[float, float, float], ...]
+
+
+@dataclass(frozen=True)
+class BodyPrincipal:
+    """A body's principal moments and axes about its frame's origin O and about its centre of mass G
+    (each None when the tensor has symbols)."""
+
+    origin: Principal | None
+    com: Principal | None
+
+
+def body_principal(bi: BodyInertia, values: dict[sp.Symbol, sp.Expr]) -> BodyPrincipal:
+    """The principal axes of a body about O and about G, with the parameters' numeric ``values``."""
+
+    def numeric(m: sp.ImmutableMatrix) -> sp.MatrixBase:
+        return m.subs(values) if values else m
+
+    return BodyPrincipal(principal_axes(numeric(bi.inertia_origin)), principal_axes(numeric(bi.inertia_com)))
 
 
 def principal_axes(inertia: sp.MatrixBase, digits: int = 12) -> Principal | None:

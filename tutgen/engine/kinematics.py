@@ -70,6 +70,164 @@ class Frame:
 
 
 @dataclass(frozen=True)
+class Identity:
+    """A trigonometric identity as a step uses it: the general ``rule`` (ASCII, for the reader) and the
+    instance, ``lhs = rhs`` with the step's own angles."""
+
+    rule: str  # "sin(A)^2 + cos(A)^2 = 1", "cos(A) cos(B) + sin(A) sin(B) = cos(A - B)", ...
+    lhs: sp.Expr
+    rhs: sp.Expr
+
+
+@dataclass(frozen=True)
+class SpeedSquared:
+    """v^2 = v . v worked as a teacher does: the squares of the velocity's components, expanded, and the
+    identities that shorten it (``cos A cos B + sin A sin B = cos(A - B)`` in a two-link arm).
+
+    ``result`` is the expansion with ``identities`` applied; it equals ``expanded`` for every q, so it is
+    the body's v^2 (the energies' tidied ``speed_squared`` prints it in a teacher's order).
+    """
+
+    components: tuple[sp.Expr, ...]  # the velocity's components (world axes), x, y, z
+    expanded: sp.Expr  # sum of their squares, multiplied out
+    identities: tuple[Identity, ...]
+    result: sp.Expr
+
+
+#: velocities longer than this many operations are not worked through identity by identity (a spatial
+#: arm's expansion would run to pages; the energies print v^2 directly)
+SPEED_STEPS_BUDGET = 400
+
+RULE_PYTHAGORAS = "sin(A)^2 + cos(A)^2 = 1"
+RULE_COS_DIFFERENCE = "cos(A) cos(B) + sin(A) sin(B) = cos(A - B)"
+RULE_SIN_DIFFERENCE = "sin(A) cos(B) - cos(A) sin(B) = sin(A - B)"
+
+
+def speed_squared_steps(velocity: sp.MatrixBase) -> SpeedSquared | None:
+    """v . v with the identities a teacher uses, or None when the velocity is too long to work through.
+
+    The expansion is a polynomial in the sines and cosines of its angles; the identities are applied
+    to the part of the coefficients their two products share: sin^2 A + cos^2 A = 1,
+    cos A cos B + sin A sin B = cos(A - B) and sin A cos B - cos A sin B = sin(A - B).
+
+    Examples
+    ========
+    >>> import sympy as sp
+    >>> t1, t2, w1, w2 = sp.symbols("t1 t2 w1 w2")
+    >>> w = w1 + w2
+    >>> v = sp.Matrix([-sp.sin(t1) * w1 - sp.sin(t1 + t2) * w, sp.cos(t1) * w1 + sp.cos(t1 + t2) * w, 0])
+    >>> steps = speed_squared_steps(v)
+    >>> [i.rule for i in steps.identities]
+    ['sin(A)^2 + cos(A)^2 = 1', 'sin(A)^2 + cos(A)^2 = 1', 'cos(A) cos(B) + sin(A) sin(B) = cos(A - B)']
+    >>> sp.expand(steps.result)
+    2*w1**2*cos(t2) + 2*w1**2 + 2*w1*w2*cos(t2) + 2*w1*w2 + w2**2
+    """
+    components = tuple(sp.Matrix(velocity))
+    if sum(sp.count_ops(c) for c in components) > SPEED_STEPS_BUDGET:
+        return None
+    expanded = sp.expand(sum((c**2 for c in components), sp.Integer(0)))
+    trig = sorted(expanded.atoms(sp.sin, sp.cos), key=sp.default_sort_key)
+    if not trig:
+        return SpeedSquared(components, expanded, (), expanded)
+    poly = sp.Poly(expanded, *trig)
+    terms: dict[tuple[int, ...], sp.Expr] = dict(poly.terms())
+    index = {f: k for k, f in enumerate(trig)}
+    extra: list[sp.Expr] = []
+    used: list[Identity] = []
+
+    def common(a: sp.Expr, b: sp.Expr) -> sp.Expr:
+        """The terms two coefficients share (the part of a pair of products an identity can shorten)."""
+        others = set(sp.Add.make_args(sp.expand(b)))
+        return sp.Add(*[t for t in sp.Add.make_args(sp.expand(a)) if t in others])
+
+    def take(exps: tuple[int, ...], amount: sp.Expr) -> None:
+        left = sp.expand(terms.pop(exps) - amount)
+        if left != 0:
+            terms[exps] = left
+
+    def monomial(exps: tuple[int, ...]) -> sp.Expr:
+        return sp.Mul(*[f**e for f, e in zip(trig, exps, strict=True)])
+
+    def note(identity: Identity) -> None:
+        if all(i.lhs != identity.lhs for i in used):
+            used.append(identity)
+
+    args = sorted({f.args[0] for f in trig}, key=sp.default_sort_key)
+    changed = True
+    while changed:
+        changed = False
+        # sin^2 A + cos^2 A = 1
+        for a in args:
+            si, ci = index.get(sp.sin(a)), index.get(sp.cos(a))
+            if si is None or ci is None:
+                continue
+            for exps in list(terms):
+                if exps not in terms or exps[si] < 2:
+                    continue
+                partner = list(exps)
+                partner[si] -= 2
+                partner[ci] += 2
+                partner_t = tuple(partner)
+                coeff = common(terms[exps], terms[partner_t]) if partner_t in terms else sp.Integer(0)
+                if coeff != 0:
+                    rest = list(exps)
+                    rest[si] -= 2
+                    take(exps, coeff)
+                    take(partner_t, coeff)
+                    terms[tuple(rest)] = terms.get(tuple(rest), sp.Integer(0)) + coeff
+                    note(Identity(RULE_PYTHAGORAS, sp.sin(a) ** 2 + sp.cos(a) ** 2, sp.Integer(1)))
+                    changed = True
+        # cos A cos B + sin A sin B = cos(A - B);  sin A cos B - cos A sin B = sin(A - B)
+        for i, a in enumerate(args):
+            for b in args[i + 1 :]:
+                ca, cb, sa, sb = (index.get(f) for f in (sp.cos(a), sp.cos(b), sp.sin(a), sp.sin(b)))
+                if None in (ca, cb, sa, sb):
+                    continue
+                for exps in list(terms):
+                    if exps not in terms:
+                        continue
+                    if exps[ca] >= 1 and exps[cb] >= 1:
+                        partner = list(exps)
+                        partner[ca] -= 1
+                        partner[cb] -= 1
+                        partner[sa] += 1
+                        partner[sb] += 1
+                        partner_t = tuple(partner)
+                        coeff = common(terms[exps], terms[partner_t]) if partner_t in terms else sp.Integer(0)
+                        if coeff != 0:
+                            rest = list(exps)
+                            rest[ca] -= 1
+                            rest[cb] -= 1
+                            take(exps, coeff)
+                            take(partner_t, coeff)
+                            extra.append(coeff * monomial(tuple(rest)) * sp.cos(a - b))
+                            lhs = sp.cos(a) * sp.cos(b) + sp.sin(a) * sp.sin(b)
+                            note(Identity(RULE_COS_DIFFERENCE, lhs, sp.cos(a - b)))
+                            changed = True
+                            continue
+                    if exps[sa] >= 1 and exps[cb] >= 1:
+                        partner = list(exps)
+                        partner[sa] -= 1
+                        partner[cb] -= 1
+                        partner[ca] += 1
+                        partner[sb] += 1
+                        partner_t = tuple(partner)
+                        coeff = common(terms[exps], -terms[partner_t]) if partner_t in terms else sp.Integer(0)
+                        if coeff != 0:
+                            rest = list(exps)
+                            rest[sa] -= 1
+                            rest[cb] -= 1
+                            take(exps, coeff)
+                            take(partner_t, -coeff)
+                            extra.append(coeff * monomial(tuple(rest)) * sp.sin(a - b))
+                            lhs = sp.sin(a) * sp.cos(b) - sp.cos(a) * sp.sin(b)
+                            note(Identity(RULE_SIN_DIFFERENCE, lhs, sp.sin(a - b)))
+                            changed = True
+    result = sp.Add(*[coeff * monomial(exps) for exps, coeff in terms.items()], *extra)
+    return SpeedSquared(components, expanded, tuple(used), result)
+
+
+@dataclass(frozen=True)
 class BodyKinematics:
     """A body's placement and velocities, in world components."""
 
@@ -81,6 +239,8 @@ class BodyKinematics:
     jw: sp.ImmutableMatrix  # omega = jw * q_dot
     velocity: Vec  # v_G
     angular_velocity: Vec
+    # v_G . v_G worked step by step, with the identities used (None: too long to work through)
+    speed: SpeedSquared | None = None
 
 
 class Kinematics:
@@ -101,6 +261,7 @@ class Kinematics:
             f = self.frames[body.name]
             com = (f.position + f.rotation * sp.Matrix(com_of[body.name])).applyfunc(sp.expand)
             jv = com.jacobian(self.q) if n else sp.zeros(3, 0)
+            velocity = Vec((jv * self.qd).applyfunc(_collect_rates(self.qd)))
             self.bodies[body.name] = BodyKinematics(
                 name=body.name,
                 position=Vec(f.position),
@@ -108,8 +269,9 @@ class Kinematics:
                 com=Vec(com),
                 jv=sp.ImmutableMatrix(jv),
                 jw=sp.ImmutableMatrix(f.jw),
-                velocity=Vec((jv * self.qd).applyfunc(_collect_rates(self.qd))),
+                velocity=velocity,
                 angular_velocity=Vec((f.jw * self.qd).applyfunc(sp.expand)),
+                speed=speed_squared_steps(velocity),
             )
 
     # -- building frames -----------------------------------------------------------------

@@ -31,12 +31,13 @@ import sympy as sp
 from tutgen.engine.checks import dimension_checks, matrix_form_checks, verify
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.forces import generalized_forces, rotors, spring_energies
-from tutgen.engine.inertia import BodyInertia, Principal, body_inertia, principal_axes
+from tutgen.engine.inertia import BodyInertia, BodyPrincipal, body_inertia, body_principal
 from tutgen.engine.kinematics import Kinematics
 from tutgen.engine.lagrange import energies, lagrange_equations
 from tutgen.engine.lazytable import LazyTable
 from tutgen.engine.matrix_form import christoffel_symbols, coriolis_terms, equations_of_motion, gravity_vector
 from tutgen.engine.newton_euler import derive_newton_euler
+from tutgen.engine.potential import potential_sources
 from tutgen.engine.recursive import nested_dynamics
 from tutgen.engine.remarks import REMARK_CONSTANT_MASS_MATRIX, degeneracy_remarks, rotor_remark, zero_remarks
 from tutgen.engine.serial import REMARK_FAST_PATH, is_large_serial_chain, serial_checks, serial_dynamics
@@ -131,13 +132,12 @@ def derive_with_deadline(
         raise
 
 
-def mass_properties(system: System) -> tuple[tuple[BodyInertia, ...], tuple[Principal | None, ...]]:
-    """Stage 1: each body's inertia, and the principal axes of its inertia about the body frame's origin
-    (with the parameters' numeric values, where they have them)."""
+def mass_properties(system: System) -> tuple[tuple[BodyInertia, ...], tuple[BodyPrincipal, ...]]:
+    """Stage 1: each body's inertia, and its principal axes about the body frame's origin and about its
+    centre of mass (with the parameters' numeric values, where they have them)."""
     checkpoint("inertia")
     inertia = tuple(body_inertia(b) for b in system.bodies)
-    values = system.values
-    principal = tuple(principal_axes(bi.inertia_origin.subs(values) if values else bi.inertia_origin) for bi in inertia)
+    principal = tuple(body_principal(bi, system.values) for bi in inertia)
     return inertia, principal
 
 
@@ -145,7 +145,7 @@ def _general_route(
     system: System,
     methods: tuple[Method, ...],
     inertia: tuple[BodyInertia, ...],
-    principal: tuple[Principal | None, ...],
+    principal: tuple[BodyPrincipal, ...],
     kinds: set[StepKind],
 ) -> Derivation:
     """Stages 2-8 for any tree of joints, bodies placed by position, or a given T and U."""
@@ -191,7 +191,7 @@ def _general_route(
     # the remarks on H and on the equations only where they are derived (p02 asks for T alone)
     if kinds & {StepKind.MASS_MATRIX, StepKind.EQUATIONS_OF_MOTION, StepKind.LAGRANGE_EQUATIONS}:
         remarks += degeneracy_remarks(system, hm, det, t_total, u_total, forces, eom)
-    remarks += zero_remarks(system, inertia, u_total, forces)
+    remarks += zero_remarks(system, inertia, u_total, forces, energy.bodies)
     if all(first[key] == 0 for key in first) and kinds & {StepKind.MASS_MATRIX, StepKind.CHRISTOFFEL}:
         remarks.append(REMARK_CONSTANT_MASS_MATRIX)
     derivation = Derivation(
@@ -201,6 +201,7 @@ def _general_route(
         kinematics=energy.kinematics,
         energies=energy.bodies,
         spring_energies=springs,
+        potential_sources=potential_sources(system, energy.bodies, springs, kin),
         kinetic_energy=t_total,
         potential_energy=u_total,
         lagrangian=lagrangian,
@@ -237,7 +238,7 @@ def _serial_route(
     system: System,
     methods: tuple[Method, ...],
     inertia: tuple[BodyInertia, ...],
-    principal: tuple[Principal | None, ...],
+    principal: tuple[BodyPrincipal, ...],
 ) -> Derivation:
     """A large serial arm: H, C, G, Q, the equations of motion and the Christoffel symbols, with empty
     ``lagrange_terms`` and no Newton-Euler (see ``REMARK_FAST_PATH``).

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from tutgen.engine.derivation import BodyEnergy
 from tutgen.engine.inertia import BodyInertia
 from tutgen.model.system import Ask, System
 
@@ -39,21 +40,53 @@ def rotor_remark(system: System, i: int, reflected: sp.Expr) -> str:
     )
 
 
-def zero_remarks(system: System, inertia: tuple[BodyInertia, ...], u: sp.Expr, forces: list[sp.Expr]) -> list[str]:
+def zero_remarks(
+    system: System,
+    inertia: tuple[BodyInertia, ...],
+    u: sp.Expr,
+    forces: list[sp.Expr],
+    energies: tuple[BodyEnergy, ...] = (),
+) -> list[str]:
     """Bodies without mass, springs without stiffness, dampers without damping, no gravity: valid, but worth
-    a word, since each is usually a slip in the spec."""
+    a word, since each is usually a slip in the spec.
+
+    What a massless body adds is read off the results it comments on: its kinetic energy among
+    ``energies`` (when the route has them; the serial route does not) and its inertia about its centre of
+    mass. A flywheel (``mass: 0, inertia: {zz: J}``) that turns adds J w^2 / 2 to T, so it is not said to
+    add nothing.
+    """
     values = system.values
 
     def is_zero_value(e: sp.Expr | None) -> bool:
         return e is not None and sp.sympify(e).subs(values) == 0
 
+    def is_zero_expr(e: sp.Expr) -> bool:
+        value = sp.sympify(e).subs(values) if values else sp.sympify(e)
+        return value == 0 or sp.simplify(value) == 0
+
     # a massless body that carries others is a device of the kinematics (a gimbal frame), not a slip
     parents = {j.parent for j in system.joints}
-    out = [
-        f"Body '{bi.name}' has zero mass, so it adds nothing to T, U or H."
-        for bi in inertia
-        if is_zero_value(bi.mass) and bi.name not in parents
-    ]
+    by_name = {e.name: e for e in energies}
+    out: list[str] = []
+    for bi in inertia:
+        if not is_zero_value(bi.mass) or bi.name in parents:
+            continue
+        energy = by_name.get(bi.name)
+        no_inertia = all(is_zero_expr(x) for x in bi.inertia_com)
+        if no_inertia:
+            out.append(f"Body '{bi.name}' has zero mass and no moment of inertia, so it adds nothing to T, U or H.")
+        elif energy is not None and is_zero_expr(energy.kinetic):
+            out.append(f"Body '{bi.name}' has zero mass and does not turn, so it adds nothing to T, U or H.")
+        elif energy is not None:
+            out.append(
+                f"Body '{bi.name}' has zero mass, so it adds nothing to U; its moment of inertia still adds "
+                f"{_ascii(energy.kinetic)} to T, and so to H."
+            )
+        else:
+            out.append(
+                f"Body '{bi.name}' has zero mass, so it adds nothing to U; its moment of inertia still adds "
+                "its rotational energy to T, and so to H."
+            )
     out += [
         f"Spring '{s.name}' has zero stiffness, so it stores no energy and adds nothing to U or G."
         for s in system.springs
@@ -98,3 +131,8 @@ def degeneracy_remarks(
             "the equations cannot be solved for every acceleration."
         )
     return out
+
+
+def _ascii(e: sp.Expr) -> str:
+    """An expression in the sentences' ASCII notation (``J phi_dot^2/2``), which the renderers typeset."""
+    return sp.sstr(e).replace("**", "^").replace("*", " ")

@@ -251,6 +251,13 @@ class ArmTable:
 
 
 @dataclass(frozen=True)
+class Given:
+    """What a question states besides its statement and data (the spec's ``given:``)."""
+
+    coordinates: bool = True  # False: the question leaves the generalized coordinates to the student
+
+
+@dataclass(frozen=True)
 class System:
     """A validated problem, ready to derive."""
 
@@ -278,6 +285,8 @@ class System:
     simulation: Simulation | None = None  # the spec's `simulate:` section (tutgen simulate)
     marking: Marking | None = None  # the spec's `marking:` section: what `tutgen check` marks
     arm: ArmTable | None = None  # the spec's `arm:` table as written (its links are in bodies and joints)
+    question_title: str | None = None  # the question sheet's title, when it differs from ``title``
+    given: Given = field(default_factory=Given)
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

@@ -41,12 +41,22 @@ class MathSpan:
     relations: tuple[str, ...] = ()
 
 
+@dataclass(frozen=True)
+class Placeholder:
+    """``{m}`` in a statement: the value of parameter ``name`` with its unit, filled in when the text is
+    printed, so that each variant of a tutorial sheet quotes its own number (``{{`` and ``}}`` are literal
+    braces)."""
+
+    name: str
+
+
 class RichText(str):
-    """A reader's text: the ``str`` as written, with its parts (``str`` and :class:`MathSpan`) in order."""
+    """A reader's text: the ``str`` as written, with its parts (``str``, :class:`MathSpan` and, in a
+    statement, :class:`Placeholder`) in order."""
 
-    parts: tuple[str | MathSpan, ...]
+    parts: tuple[str | MathSpan | Placeholder, ...]
 
-    def __new__(cls, raw: str, parts: tuple[str | MathSpan, ...] | None = None) -> RichText:
+    def __new__(cls, raw: str, parts: tuple[str | MathSpan | Placeholder, ...] | None = None) -> RichText:
         self = super().__new__(cls, raw)
         self.parts = parts if parts is not None else ((raw,) if raw else ())
         return self

@@ -33,7 +33,7 @@ import sympy as sp
 
 from tutgen.engine.derivation import Derivation
 from tutgen.model.system import System
-from tutgen.model.text import MathSpan, RichText
+from tutgen.model.text import MathSpan, Placeholder, RichText
 from tutgen.render.layout import BOXED_WIDTH_PT, LINE_WIDTH_PT, layout
 from tutgen.render.printer import TexPrinter
 
@@ -68,7 +68,9 @@ def rich(value: str, tex: TexPrinter, before: str = "", after: str = "") -> list
     the template to escape. ``before``/``after`` are wording of tutgen's own around it."""
     parts: list[Part] = [text(before)] if before else []
     for piece in value.parts if isinstance(value, RichText) else (value,):
-        if isinstance(piece, MathSpan):
+        if isinstance(piece, Placeholder):
+            parts.append(math(quoted_value(tex.system, piece.name)))
+        elif isinstance(piece, MathSpan):
             span_tex = tex.with_names(_free_names(piece))
             printed = [span_tex(t) for t in piece.terms]
             chain = printed[0]
@@ -86,6 +88,19 @@ def rich(value: str, tex: TexPrinter, before: str = "", after: str = "") -> list
         else:
             merged.append(part)
     return merged
+
+
+def quoted_value(system: System, name: str) -> str:
+    """What a statement's placeholder ``{m}`` prints: the parameter's value in its unit as written
+    (``1.5\\ \\mathrm{kg}``, this variant's on a tutorial sheet), or its symbol when it has no value."""
+    from tutgen.spec.units import decimal_text, in_unit
+
+    p = next(p for p in system.parameters if p.name == name)
+    if p.value is None:
+        return p.latex
+    number = in_unit(p.value, p.unit)
+    shown = decimal_text(number) if number.is_Rational else TexPrinter(system)(number)
+    return shown + (unit_tex(p.unit) if p.unit else "")
 
 
 _RELATION_TEX = {"!=": "\\ne", "<=": "\\le", ">=": "\\ge"}

@@ -70,9 +70,9 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
                 "inertia_tensor": matrix(num(bi.inertia_origin)),
                 "inertia_tensor_com": matrix(num(bi.inertia_com)),
             }
-            if principal is not None:
-                entry["principal_moments"] = list(principal.moments)
-                entry["principal_axes"] = [list(a) for a in principal.axes]
+            if principal.origin is not None:
+                entry["principal_moments"] = list(principal.origin.moments)
+                entry["principal_axes"] = [list(a) for a in principal.origin.axes]
             entry["parts"] = {
                 p.name: {
                     "shape": p.shape.value,

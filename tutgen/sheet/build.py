@@ -126,13 +126,13 @@ def substituted(derivation: Derivation, system: Any) -> VariantDerivation:
     Everything the engine derives is symbolic in the parameters, except the principal moments and axes,
     which it computes from the numbers: those are computed again, as the engine does, from this system.
     """
-    from tutgen.engine.inertia import principal_axes
+    from tutgen.engine.inertia import body_principal
 
     fields = {f.name: getattr(derivation, f.name) for f in dataclasses.fields(Derivation)}
     fields["system"] = system
     if system.values != derivation.system.values:
         values = system.values
-        fields["principal"] = tuple(principal_axes(bi.inertia_origin.subs(values)) for bi in derivation.inertia)
+        fields["principal"] = tuple(body_principal(bi, values) for bi in derivation.inertia)
     return VariantDerivation(**fields)
 
 
@@ -224,10 +224,11 @@ def has_figure(system: Any) -> bool:
 def _figures(shared: Shared, systems: Sequence[Any]) -> dict[str, tuple[str, str]]:
     """Problem key -> (file name, SVG) of the figures a Markdown sheet shows beside its problems."""
     from tutgen.figure.view import svg_file
+    from tutgen.sheet.render import as_set
 
     out: dict[str, tuple[str, str]] = {}
     for base, system in zip(shared.problems, systems, strict=True):
-        made = svg_file(system) if has_figure(system) else None
+        made = svg_file(as_set(system)) if has_figure(system) else None
         if made is not None:
             out[base.key] = (figure_name(base.key), made[1])
     return out

@@ -4,9 +4,13 @@ The template context of a sheet (templates/{markdown,latex}/sheet-*.j2), plain d
 
 - ``title``, ``course``, ``date``, ``label`` (the variant's label or the student's name; may be empty),
   ``kind`` (set by the template: "questions" or "worked solutions");
-- ``problems``: one mapping per problem, in sheet order, with ``number``, ``title``, ``statement``,
-  ``statement_parts``, ``given`` and ``coordinates`` (lists of parts, as in tutgen/render/views.py; the
-  statement's ``$…$`` maths typeset), ``asked`` (texts) and ``asked_parts`` (the same as lists of
+- ``problems``: one mapping per problem, in sheet order, with ``number``, ``title`` (the solution's) and
+  ``question_title`` (the question sheet's: the spec's ``question_title``, else its ``title``),
+  ``statement``, ``statement_parts`` (its placeholders ``{m}`` filled with this variant's values),
+  ``given`` and ``coordinates`` (lists of parts, as in tutgen/render/views.py; the statement's ``$…$``
+  maths typeset), ``question_coordinates`` (the coordinates as the question sheet states them: none when
+  the spec's ``given: {coordinates: false}`` leaves them to the student), ``asked`` (texts) and
+  ``asked_parts`` (the same as lists of
   parts, maths typeset), ``figure`` (the problem's figure, as in tutgen/figure/view.py), and
   ``solution``: the worked solution's context from :func:`tutgen.render.views.solution_view`
   (``sections``, ``remarks``, ``checks``).
@@ -39,6 +43,10 @@ ASKED = {
 }
 
 
+#: what a question asks first when it leaves the coordinates to the student (``given: {coordinates: false}``)
+ASKED_COORDINATES = "a choice of generalized coordinates (propose them)"
+
+
 def problem_view(number: int, derivation: Derivation, solution: bool) -> dict[str, Any]:
     """One problem of a sheet: as set and, for the solution sheet, its worked solution."""
     from tutgen.render.views import solution_view
@@ -47,18 +55,23 @@ def problem_view(number: int, derivation: Derivation, solution: bool) -> dict[st
     view = solution_view(derivation, decimals=True) if solution else None
     coords = coordinate_items(s)
     asked_text = [ASKED[a] for a in Ask if a in s.ask]
+    proposed = not s.given.coordinates and bool(s.coordinates)  # the student is to propose them
+    if proposed:
+        asked_text.insert(0, ASKED_COORDINATES)
     if asked_text:  # a sentence: "Asked. The kinetic energy; the potential energy."
         asked_text[0] = asked_text[0][:1].upper() + asked_text[0][1:]
     asked = [a.replace("$", "") for a in asked_text]  # the plain wording (maths as LaTeX source)
     return {
         "number": number,
         "title": s.title,
+        "question_title": s.question_title or s.title,
         "statement": s.statement or "",
         "statement_parts": rich(s.statement or "", TexPrinter(s)),
         "given": given_items(s),
         "coordinates": coords,
+        "question_coordinates": [] if proposed else coords,
         "asked": asked,
-        "figure": _figure(s),  # tutgen/figure/view.py: the LaTeX sheets set it beside the problem
+        "figure": _figure(as_set(s)),  # tutgen/figure/view.py: the LaTeX sheets set it beside the problem
         "asked_parts": [prose(a) for a in asked_text],
         "solution": {
             "sections": view["sections"] if view else [],
@@ -66,6 +79,14 @@ def problem_view(number: int, derivation: Derivation, solution: bool) -> dict[st
             "checks": view["checks"] if view else [],
         },
     }
+
+
+def as_set(system: Any) -> Any:
+    """The system as the question sheet names it: its ``question_title`` as its title, for what both sheets
+    share (the figure's caption and its SVG's title), so that neither gives the answer away."""
+    import dataclasses
+
+    return dataclasses.replace(system, title=system.question_title) if system.question_title else system
 
 
 def _figure(system: Any) -> dict[str, Any]:

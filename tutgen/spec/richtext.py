@@ -44,14 +44,14 @@ from __future__ import annotations
 
 import dataclasses
 import re
-from collections.abc import Iterator, Mapping
+from collections.abc import Collection, Iterator, Mapping
 from typing import Any
 
 import sympy as sp
 
 from tutgen.errors import SpecError
 from tutgen.model.system import System
-from tutgen.model.text import MathSpan, RichText
+from tutgen.model.text import MathSpan, Placeholder, RichText
 from tutgen.spec.expr import CONSTANTS, FUNCTIONS, MAX_LENGTH, ExprError, ExpressionParser
 from tutgen.spec.loader import KeyPath, SourceMap
 
@@ -65,6 +65,7 @@ MAX_MATHS = 20_000
 #: The relations a span may chain expressions with; the two-character ones first.
 _RELATION_RE = re.compile(r"<=|>=|!=|=|<|>")
 _ESCAPE_HINT = "write \\$ for a dollar sign"
+_BRACE_HINT = "a statement quotes a parameter's value as {name}; write {{ and }} for literal braces"
 
 
 class RichTextError(ValueError):
@@ -196,15 +197,19 @@ def _span(source: str, names: _ProseNames, offset: int) -> MathSpan:
     return MathSpan(source, tuple(terms), tuple(relations))
 
 
-def parse_rich_text(text: str, names: Mapping[str, sp.Expr], max_maths: int = MAX_MATHS) -> RichText:
+def parse_rich_text(
+    text: str, names: Mapping[str, sp.Expr], max_maths: int = MAX_MATHS, placeholders: Collection[str] | None = None
+) -> RichText:
     """Read the ``$…$`` spans of ``text`` (see the module docstring) into a :class:`RichText`.
 
     ``names`` are the declared names (parameters, coordinates, rates) and their symbols; the spans
-    may hold ``max_maths`` characters of maths in all. Raises :class:`RichTextError` with the 0-based
-    offset into ``text`` of the problem.
+    may hold ``max_maths`` characters of maths in all. With ``placeholders`` (the parameters' names, for a
+    statement), ``{name}`` outside the maths is a :class:`~tutgen.model.text.Placeholder` for that
+    parameter's value, and ``{{``/``}}`` are literal braces. Raises :class:`RichTextError` with the
+    0-based offset into ``text`` of the problem.
     """
     prose = _ProseNames(names)
-    parts: list[str | MathSpan] = []
+    parts: list[str | MathSpan | Placeholder] = []
     plain: list[str] = []
     spans = 0
     i, end = 0, len(text)
@@ -213,6 +218,30 @@ def parse_rich_text(text: str, names: Mapping[str, sp.Expr], max_maths: int = MA
         if char == "\\" and text.startswith("$", i + 1):
             plain.append("$")
             i += 2
+            continue
+        if placeholders is not None and char in "{}":
+            if text.startswith(char * 2, i):  # {{ and }}: a literal brace
+                plain.append(char)
+                i += 2
+                continue
+            if char == "}":
+                raise RichTextError("unmatched '}'", i, _BRACE_HINT)
+            close = text.find("}", i + 1)
+            name = text[i + 1 : close].strip() if close > 0 else ""
+            if close < 0 or "{" in text[i + 1 : close]:
+                raise RichTextError("unclosed '{': a placeholder is a parameter's name in braces, {m}", i, _BRACE_HINT)
+            if name not in placeholders:
+                known = ", ".join(sorted(placeholders)) or "none"
+                raise RichTextError(
+                    f"unknown parameter '{name}' in the placeholder '{text[i : close + 1]}' (known: {known})",
+                    i,
+                    _BRACE_HINT,
+                )
+            if plain:
+                parts.append("".join(plain))
+                plain = []
+            parts.append(Placeholder(name))
+            i = close + 1
             continue
         if char != "$":
             plain.append(char)
@@ -255,7 +284,7 @@ _DESCRIBED = ("parameters", "coordinates", "bodies", "springs", "dampers", "load
 
 def _text_paths(data: Mapping[str, Any]) -> Iterator[tuple[KeyPath, str, bool]]:
     """(key path, text, whether it is stripped as the model keeps it) of every text of a loaded spec."""
-    for key in ("title", "statement"):
+    for key in ("title", "question_title", "statement"):
         if isinstance(data.get(key), str):
             yield (key,), data[key], True
     sections: list[tuple[KeyPath, Any]] = [((section,), data.get(section)) for section in _DESCRIBED]
@@ -271,7 +300,7 @@ def _text_paths(data: Mapping[str, Any]) -> Iterator[tuple[KeyPath, str, bool]]:
 
 
 def read_texts(
-    data: Mapping[str, Any], smap: SourceMap, names: Mapping[str, sp.Expr]
+    data: Mapping[str, Any], smap: SourceMap, names: Mapping[str, sp.Expr], parameters: Collection[str] = ()
 ) -> tuple[dict[KeyPath, RichText], list[SpecError]]:
     """Every text of a loaded spec (title, statement, descriptions) read by :func:`parse_rich_text`.
 
@@ -285,7 +314,8 @@ def read_texts(
         lead = len(raw) - len(raw.lstrip()) if strip else 0
         text = raw.strip() if strip else raw
         try:
-            texts[path] = parse_rich_text(text, names, budget)
+            quotes = set(parameters) if path == ("statement",) else None  # placeholders: statements only
+            texts[path] = parse_rich_text(text, names, budget, quotes)
         except RichTextError as exc:
             errors.append(SpecError(smap.expr_location(path, lead + exc.offset), exc.message, exc.hint))
             if exc.message.startswith("the texts hold more than"):
@@ -312,6 +342,7 @@ def with_texts(system: System, texts: Mapping[KeyPath, RichText]) -> System:
     return dataclasses.replace(
         system,
         title=texts.get(("title",), system.title),
+        question_title=texts.get(("question_title",), system.question_title),
         statement=texts.get(("statement",), system.statement),
         parameters=tuple(described("parameters", p) for p in system.parameters),
         coordinates=tuple(coordinates.values()),

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
 SPEC_FORMAT_VERSION = 1
@@ -634,6 +634,16 @@ class FigureSpec(SpecModel):
     )
 
 
+class GivenSpec(SpecModel):
+    """What a question states besides its statement and data."""
+
+    coordinates: StrictBool = Field(
+        True,
+        description="Whether the question sheet lists the generalized coordinates (false: the student is to "
+        "propose them; the worked solution still gives them).",
+    )
+
+
 class SpecDoc(SpecModel):
     """A tutgen spec: one mechanics problem."""
 
@@ -643,6 +653,14 @@ class SpecDoc(SpecModel):
         None,
         description="The problem statement, shown in the worked solution; may hold maths between dollars "
         "in the expression grammar ($T = m v^2/2$), and \\$ for a dollar sign.",
+    )
+    question_title: Text | None = Field(
+        None,
+        description="The title on a tutorial's question sheet, when the solution's `title` would give the answer "
+        "away (default: `title`); may hold maths between dollars.",
+    )
+    given: GivenSpec | None = Field(
+        None, description="What the question states: `{coordinates: false}` leaves the coordinates to the student."
     )
     significant_figures: Annotated[int, BeforeValidator(_significant_figures)] | None = Field(
         None,

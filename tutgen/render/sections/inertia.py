@@ -1,14 +1,20 @@
-"""The mass properties of each body: its parts' inertia about their centroids, moved to the body
-frame's origin (parallel-axis theorem), the totals and the principal moments."""
+"""The mass properties of each body, as a teacher works them: each part's moments from its shape's formula
+(symbols, then numbers with units), each parallel-axis shift with its m d^2 term, the sum over the parts,
+the products of inertia, the centre of mass, the tensor about it, and the principal moments and axes about
+the body frame's origin O and about the centre of mass G, each labelled with its point."""
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 import sympy as sp
 
+from tutgen.engine.inertia import AXES, ENTRIES, BodyInertia, PartInertia, Principal, ShapeFormula
 from tutgen.engine.steps import StepKind
+from tutgen.model.system import Shape
 from tutgen.render.blocks import (
+    Block,
     SolutionContext,
     as_number,
     boxed,
@@ -16,62 +22,266 @@ from tutgen.render.blocks import (
     display,
     math,
     para,
+    prose,
     section,
+    stacked,
     subheading,
     text,
+    unit_tex,
 )
-from tutgen.spec.units import DIMENSIONS, Dimension
+from tutgen.render.layout import LINE_WIDTH_PT, tex_width
 
-MASS, VOLUME, INERTIA, LENGTH = (DIMENSIONS[k] for k in ("mass", "volume", "inertia", "length"))
+MASS, LENGTH, VOLUME, INERTIA = "kg", "m", "m^3", "kg*m^2"
+#: the widest matrix m(|r_G|^2 E - r_G r_G^T) printed in the shift to the centre of mass
+SHIFT_WIDTH = 0.5 * LINE_WIDTH_PT
 
-
-def quantity(c: SolutionContext, value: Any, dimension: Dimension) -> str:
-    """A mass property as a number with its SI unit (``0.006132 \\ \\mathrm{kg\\,m^{2}}``, TexPrinter.unit)."""
-    shown = as_number(c.num(value))
-    return c.tex(shown) + c.tex.unit(shown, dimension)
-
-
-def symbolic(c: SolutionContext, value: Any) -> list[str]:
-    """A formula before its number (``m = \\tfrac{3}{8000} \\rho = 2.943 kg``); nothing for a plain number."""
-    return [c.tex(value)] if sp.sympify(value).free_symbols else []
+#: what the symbols of a shape's formula stand for, as the solution says it
+_SYMBOL_WORDS = {
+    Shape.BOX: "its edges along its own x, y, z axes",
+    Shape.CYLINDER: "its radius and length",
+    Shape.HOLLOW_CYLINDER: "its outer and inner radii and length",
+    Shape.THIN_CYLINDER: "its radius and length",
+    Shape.ROD: "its length",
+    Shape.DISC: "its radius",
+    Shape.SPHERE: "its radius",
+    Shape.SPHERICAL_SHELL: "its radius",
+}
 
 
 def mass_properties(c: SolutionContext) -> dict[str, Any] | None:
-    d, s, tex, num = c.d, c.s, c.tex, c.num
+    d, s = c.d, c.s
     if not d.has_step(StepKind.INERTIA) or not d.inertia:
         return None
     sec = section(
         "Mass properties",
-        "Each part's inertia about its own centroid, then moved to the body "
-        "frame's origin by the parallel-axis theorem $J_O = J_G + m(|d|^2 E - d d^T)$.",
+        "$J_{ab} = \\int (r^2\\delta_{ab} - a\\,b)\\,dm$: the diagonal holds the moments of inertia, the "
+        "off-diagonal entries are minus the products of inertia $P_{ab} = \\int a\\,b\\,dm$. Each part's "
+        "inertia about its own centroid $G_p$ comes from its shape's formula; the parallel-axis theorem moves it "
+        "to the body frame's origin $O$ entry by entry, $J_{O,aa} = J_{G,aa} + m\\,d^2$ ($d$ the distance "
+        "between the two parallel axes) and $J_{O,ab} = J_{G,ab} - m\\,d_a d_b$.",
     )
     blocks = sec["blocks"]
     for bi, principal in zip(d.inertia, d.principal, strict=True):
-        if s.coordinates and all(p.shape.value == "point" for p in bi.parts) and len(bi.parts) <= 1:
+        if s.coordinates and all(p.shape is Shape.POINT for p in bi.parts) and len(bi.parts) <= 1:
             continue  # a lone point mass: its inertia is m r^2 in the energies, nothing to tabulate
         for p in bi.parts:
-            blocks.append(subheading(f"{bi.name} / {p.name} ({p.shape.value.replace('_', ' ')})"))
-            chains = [chain("m", *symbolic(c, p.mass), quantity(c, p.mass, MASS))]  # "m = m" says nothing: left out
-            if p.volume is not None:
-                chains.insert(0, chain("V", *symbolic(c, p.volume), quantity(c, p.volume, VOLUME)))
-            blocks += [display(ch) for ch in chains if ch]
-            blocks.append(para(text("About its centroid:")))
-            blocks.append(display(f"J_G = {quantity(c, p.inertia_centroid, INERTIA)}"))
-            if any(x != 0 for x in p.centroid):
-                blocks.append(
-                    para(
-                        text("Centroid at "),
-                        math(f"d = {quantity(c, p.centroid.T, LENGTH)}"),
-                        text("; distances to the axes "),
-                        math(f"({', '.join(tex(as_number(num(x))) for x in p.axis_distances)})"),
-                        text(":"),
-                    )
-                )
-                blocks.append(display(f"J_O = {quantity(c, p.inertia_origin, INERTIA)}"))
-        blocks.append(subheading(f"{bi.name}, total mass and inertia about the origin:"))
-        total = [chain("m", quantity(c, bi.mass, MASS)), f"J_O = {quantity(c, bi.inertia_origin, INERTIA)}"]
-        blocks.append(boxed(",\\quad ".join(t for t in total if t)))
-        if principal is not None:
-            moments = ",\\ ".join(tex(sp.Float(x)) for x in principal.moments)
-            blocks.append(para(text("Principal moments: "), math(moments), text(".")))
+            blocks += _part_blocks(c, bi, p)
+        blocks += _body_blocks(c, bi)
+        for point, found in (("O", principal.origin), ("G", principal.com)):
+            if found is not None:
+                blocks += _principal_blocks(c, point, found)
     return sec if blocks else None
+
+
+def _value(c: SolutionContext, expr: Any, unit: str) -> str:
+    """A result as printed: a number with its SI unit, a formula (symbols left) as it is."""
+    v = as_number(c.num(expr))
+    printed = c.tex(v)
+    has_symbols = bool(v.free_symbols) if isinstance(v, sp.Basic | sp.MatrixBase) else False
+    zero = v == 0 if isinstance(v, sp.Basic) else all(e == 0 for e in v)
+    return printed + (unit_tex(unit) if not has_symbols and not zero else "")
+
+
+def _moment_line(c: SolutionContext, f: ShapeFormula, label: str, formula: sp.Expr) -> str:
+    """``J_{G,xx} = m(b^2 + c^2)/12 = 0.006132 kg m^2`` (a rod's axial moment: ``J_{G,xx} = 0``)."""
+    value = _value(c, formula.subs(dict(f.symbols)), INERTIA)
+    if formula == 0:
+        return f"{_entry('G', label)} = {value}"
+    numbers = {sym: as_number(c.num(v)) for sym, v in f.symbols}
+    forms = [sp.latex(formula)]
+    if all(not n.free_symbols for n in numbers.values()):  # the formula with the part's numbers put in
+        names = {sym: c.tex(n) for sym, n in numbers.items()}  # sympy brackets a name with a power
+        forms.append(sp.latex(formula, symbol_names=names, mul_symbol="dot"))
+    return f"{_entry('G', label)} = " + " = ".join([*forms, value])
+
+
+def _chain(c: SolutionContext, name: str, expr: sp.Expr, unit: str) -> str:
+    """``V = 3/8000 = 375e-6 m^3``: the formula, then the number with its unit; a form that prints the same
+    as the one before it (``m = 1 = 1 kg``, ``m = m``) is left out."""
+    formula, number = c.tex(expr), c.tex(as_number(c.num(expr)))
+    forms = [formula] if formula != number else []
+    return chain(name, *forms, _value(c, expr, unit))
+
+
+def _entry(point: str, label: str) -> str:
+    """``J_{G,xx}``; a label of equal entries ``yy = zz`` as ``J_{G,yy} = J_{G,zz}``."""
+    if label in ("axial", "transverse"):
+        return f"J_{{{point},\\mathrm{{{label}}}}}"
+    return " = ".join(f"J_{{{point},{part.strip()}}}" for part in label.split("="))
+
+
+def _part_blocks(c: SolutionContext, bi: BodyInertia, p: PartInertia) -> list[Block]:
+    tex, num = c.tex, c.num
+    out: list[Block] = [subheading(f"{bi.name} / {p.name} ({p.shape.value.replace('_', ' ')})")]
+    chains = [_chain(c, "m", p.mass, MASS)]
+    if p.volume is not None:
+        chains.insert(0, _chain(c, "V", p.volume, VOLUME))
+    out += [display(ch) for ch in chains if ch]
+    f = p.formula
+    if f is not None:
+        symbols = ",\\ ".join(  # "h = h" (a parameter of the shape's own name) says nothing: left out
+            f"{sp.latex(sym)} = {shown}"
+            for sym, val in f.symbols
+            if (shown := _value(c, val, MASS if str(sym) == "m" else LENGTH)) != sp.latex(sym)
+        )
+        words = _SYMBOL_WORDS.get(p.shape, "")
+        axis = ""
+        if f.axis is not None:
+            axis = f", its axis along ${tex(as_number(num(f.axis.T)))}$"
+        given = [math(symbols), text("; ")] if symbols else []
+        out.append(para(text("About its centroid, by its shape's formulas ("), *given, prose(f"{words}{axis}):")))
+        out.append(stacked([_moment_line(c, f, label, formula) for label, formula in f.moments]))
+        if f.turned:
+            out.append(para(text("In the body's axes:")))
+            out.append(display(f"J_{{G}} = {_value(c, p.inertia_centroid, INERTIA)}"))
+    elif p.shape is Shape.GENERAL:
+        out.append(para(text("About its centroid, as given:")))
+        out.append(display(f"J_{{G}} = {_value(c, p.inertia_centroid, INERTIA)}"))
+    elif p.shape is Shape.POINT:
+        out.append(para(text("A point mass has no inertia about its own centroid.")))
+    if any(x != 0 for x in p.centroid):
+        out.append(
+            para(
+                text("Its centroid is at "),
+                math(f"\\mathbf d = {_value(c, p.centroid.T, LENGTH)}"),
+                text(" from O; the parallel-axis theorem, entry by entry:"),
+            )
+        )
+        out.append(stacked([_shift_line(c, p, k) for k in range(len(ENTRIES)) if _shift_shown(p, k)]))
+    return out
+
+
+def _shift_shown(p: PartInertia, k: int) -> bool:
+    sh = p.shifts[k]
+    return sh.value != 0 or sh.centroidal != 0
+
+
+def _shift_line(c: SolutionContext, p: PartInertia, k: int) -> str:
+    """``J_{O,xx} = J_{G,xx} + m(d_y^2 + d_z^2) = 3.853e-4 + 1.233 (0.05^2) = 3.468e-3 kg m^2``."""
+    tex, num = c.tex, c.num
+    label, i, j = ENTRIES[k]
+    sh = p.shifts[k]
+    d = [as_number(num(x)) for x in p.centroid]
+    mass = tex(as_number(num(p.mass)))
+    if i == j:
+        used = [m for m in range(3) if m != i and d[m] != 0]
+        symbolic = "m\\,(" + " + ".join(f"d_{AXES[m]}^2" for m in range(3) if m != i) + ")"
+        numbers = " + ".join(f"{_paren(tex(d[m]))}^2" for m in used)
+        term = (f"{mass} \\cdot ({numbers})" if len(used) > 1 else f"{mass} \\cdot {numbers}") if used else "0"
+        sign = " + "
+    else:
+        symbolic = f"m\\,d_{AXES[i]} d_{AXES[j]}"
+        term = f"{mass} \\cdot {_paren(tex(d[i]))} \\cdot {_paren(tex(d[j]))}" if d[i] != 0 and d[j] != 0 else "0"
+        sign = " - "
+    centroidal = tex(as_number(num(sh.centroidal)))
+    return (
+        f"J_{{O,{label}}} = J_{{G,{label}}}{sign}{symbolic} = {centroidal}{sign}{term} = {_value(c, sh.value, INERTIA)}"
+    )
+
+
+#: a printed factor that needs no brackets before a power: a plain number or one (indexed) name
+_ATOM = re.compile(r"[0-9.]+|\\?[A-Za-z]+(_\{?[A-Za-z0-9]+\}?)?")
+
+
+def _paren(printed: str) -> str:
+    """A printed factor in brackets when it is a sum, negative, a power or in engineering notation
+    (``375 \\times 10^{-6}``), so that a square reads right and TeX sees no double superscript."""
+    return printed if _ATOM.fullmatch(printed) else f"\\left({printed}\\right)"
+
+
+def _body_blocks(c: SolutionContext, bi: BodyInertia) -> list[Block]:
+    tex, num = c.tex, c.num
+    out: list[Block] = []
+    several = len(bi.parts) > 1
+    if several:
+        out.append(subheading(f"{bi.name}: the sum over its parts, about O"))
+        lines, zeros = [], []
+        for entry in bi.composite:
+            if all(t == 0 for t in entry.terms):
+                zeros.append(f"J_{{O,{entry.label}}}")
+                continue
+            terms = " + ".join(tex(as_number(num(t))) for t in entry.terms).replace("+ -", "- ")
+            lines.append(f"J_{{O,{entry.label}}} = {terms} = {_value(c, entry.total, INERTIA)}")
+        out.append(stacked(lines))
+        if zeros:
+            out.append(para(math(" = ".join(zeros) + " = 0"), text(" (zero for every part).")))
+    else:
+        out.append(subheading(f"{bi.name}, about O:"))
+    total = [chain("m", _value(c, bi.mass, MASS)), f"J_O = {_value(c, bi.inertia_origin, INERTIA)}"]
+    out.append(boxed(",\\quad ".join(t for t in total if t)))
+    out.append(para(_products_sentence(c, bi)))
+
+    if any(x != 0 for x in bi.com) or several:
+        out.append(subheading(f"{bi.name}: centre of mass and inertia about it"))
+        first = f"\\frac{{1}}{{{tex(as_number(num(bi.mass)))}}}\\,{tex(as_number(num(bi.first_moment)))}"
+        if not several:
+            out.append(display(f"\\mathbf r_G = \\mathbf d = {_value(c, bi.com, LENGTH)}"))
+        else:
+            out.append(
+                display(
+                    f"\\mathbf r_G = \\frac{{\\sum_p m_p \\mathbf d_p}}{{m}} = {first} = {_value(c, bi.com, LENGTH)}"
+                )
+            )
+        if not several:
+            out.append(
+                para(text("The centre of mass is the part's centroid, and "), math("J_G"), text(" its tensor above."))
+            )
+        elif any(x != 0 for x in bi.com):
+            rule = "J_G = J_O - m\\,(|\\mathbf r_G|^2 E - \\mathbf r_G \\mathbf r_G^T)"
+            shift = tex(as_number(num(bi.com_shift)))
+            result = _value(c, bi.inertia_com, INERTIA)
+            # the shift's matrix only where it fits on a line (a symbolic one is shown by its result alone)
+            middle = f" = J_O - {shift}" if tex_width(shift) <= SHIFT_WIDTH else ""
+            out.append(display(f"{rule}{middle} = {result}"))
+        else:
+            out.append(para(text("The centre of mass is at O, so "), math("J_G = J_O"), text(".")))
+    return out
+
+
+def _products_sentence(c: SolutionContext, bi: BodyInertia) -> list[dict[str, str]]:
+    """The products of inertia about O and what they say about the body's axes."""
+    num = c.num
+    nonzero = [(label, v) for label, v in bi.products_origin if as_number(num(v)) != 0]
+    if not nonzero:
+        return prose("Every product of inertia about O is zero: the body's axes are principal axes of the body at O.")
+    shown = ",\\ ".join(f"P_{{{label}}} = -J_{{O,{label}}} = {_value(c, v, INERTIA)}" for label, v in nonzero)
+    rest = " The other products are zero." if len(nonzero) < 3 else ""
+    return [
+        text("Products of inertia about O: "),
+        math(shown),
+        text(f".{rest} The body's axes are therefore not principal axes of the body at O."),
+    ]
+
+
+def _principal_blocks(c: SolutionContext, point: str, found: Principal) -> list[Block]:
+    """The principal moments (eigenvalues of J about the point) and axes (unit eigenvectors, body axes)."""
+    where = "the origin O" if point == "O" else "the centre of mass G"
+    lines = [
+        f"I_{{{point},{k + 1}}} = {c.tex(sp.Float(m))}{unit_tex(INERTIA) if m != 0 else ''}\\ \\text{{along}}\\ "
+        f"\\mathbf e_{{{k + 1}}} = {c.tex(sp.Matrix([[sp.Float(x) for x in axis]]))}"
+        for k, (m, axis) in enumerate(zip(found.moments, found.axes, strict=True))
+    ]
+    m = found.moments
+    equal = [(k, k + 1) for k in range(2) if abs(m[k + 1] - m[k]) <= 1e-9 * max(abs(m[2]), 1e-300)]
+    note: list[Block] = []
+    if len(equal) == 2:
+        note.append(para(text("The three moments are equal: every axis through the point is a principal axis.")))
+    elif equal:
+        a, b = equal[0]
+        note.append(
+            para(
+                math(f"I_{{{point},{a + 1}}} = I_{{{point},{b + 1}}}"),
+                text(": every axis in the plane of "),
+                math(f"\\mathbf e_{{{a + 1}}}, \\mathbf e_{{{b + 1}}}"),
+                text(" is a principal axis as well."),
+            )
+        )
+    return [
+        para(
+            text(f"Principal moments and axes about {where} (the eigenvalues and unit eigenvectors of "),
+            math(f"J_{point}"),
+            text(", in the body's axes):"),
+        ),
+        stacked(lines),
+        *note,
+    ]

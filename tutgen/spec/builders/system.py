@@ -22,6 +22,7 @@ from tutgen.spec.builders.coordinates import build_coordinates, coordinates_with
 from tutgen.spec.builders.elements import build_elements
 from tutgen.spec.builders.energy import build_energy
 from tutgen.spec.builders.figure import build_figure
+from tutgen.spec.builders.given import build_given
 from tutgen.spec.builders.gravity import build_gravity
 from tutgen.spec.builders.joints import build_joints, check_explicit_placement
 from tutgen.spec.builders.loads import build_generalized_forces, build_loads
@@ -29,7 +30,7 @@ from tutgen.spec.builders.marking import build_marking
 from tutgen.spec.builders.methods import build_methods
 from tutgen.spec.builders.parameters import build_parameters
 from tutgen.spec.builders.simulate import build_simulate
-from tutgen.spec.builders.texts import build_statement, build_texts, build_title
+from tutgen.spec.builders.texts import build_question_title, build_statement, build_texts, build_title
 from tutgen.spec.loader import KeyPath, SourceMap
 from tutgen.spec.richtext import with_texts
 
@@ -48,6 +49,8 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
     build_coordinates(ctx)
     title = build_title(ctx)
     statement = build_statement(ctx)
+    question_title = build_question_title(ctx)
+    given = build_given(ctx)
     gravity = build_gravity(ctx)
     body_names = declared_bodies(ctx)  # with the arm's links: springs, loads, ... may refer to them
     bodies = build_bodies(ctx)
@@ -97,5 +100,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
         figure=figure,
         simulation=simulation,
         marking=marking,
+        question_title=question_title,
+        given=given,
     )
     return with_texts(system, texts)
