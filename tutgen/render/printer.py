@@ -337,7 +337,8 @@ def is_decimal_document(system: System) -> bool:
         if isinstance(value, sp.Basic):
             if value.atoms(sp.Float):
                 return True
-            if any(r.q > EXACT_DENOMINATOR for r in value.atoms(sp.Rational)):
+            # a denominator of 10, 20, 100, ... is a decimal as written (0.3 m is 3/10, exact as read)
+            if any(r.q > EXACT_DENOMINATOR or r.q % 10 == 0 for r in value.atoms(sp.Rational)):
                 return True
     return False
 
