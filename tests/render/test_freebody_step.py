@@ -11,6 +11,7 @@ from typing import Any
 from tests.conftest import SPECS, solved
 from tutgen.api import figure_files
 from tutgen.engine.pipeline import derive
+from tutgen.render.jsonout import derivation_to_json
 from tutgen.render.latex import render_latex
 from tutgen.render.markdown import render_markdown
 from tutgen.render.sections.newton_euler import free_bodies
@@ -118,3 +119,12 @@ def test_no_diagram_where_newton_euler_is_not_printed() -> None:
     assert "fbd-" not in render_markdown(d)
     paths, _ = figure_files([P03], [Path("/nonexistent/sol.md")], force=False, derivations=[d])
     assert [p.name for p in paths] == ["p03-cart-pendulum.figure.svg"]
+
+
+def test_json_lists_the_diagram_files_beside_the_figure() -> None:
+    system, _, doc = solved(str(P03))
+    entries = dict(doc)["figure"]["free_bodies"]
+    assert [e["body"] for e in entries] == ["cart", "pendulum"]
+    assert entries[0]["svg"] == "p03-cart-pendulum.fbd-cart.svg"
+    assert "force:reaction at joint 'pivot'" in entries[1]["labels"]
+    assert derivation_to_json(derive(system, "lagrange"))["figure"]["free_bodies"] == []
