@@ -137,6 +137,17 @@ def solve_specs(
     """Load every spec (reporting all their errors at once), derive each, render each: all of it
     within ``timeout`` seconds (None or 0 for no limit), one budget shared by the three stages, so a
     :class:`~tutgen.errors.DerivationTimeout` names the stage it ran out in."""
+    return solve_and_derive(paths, fmt, method, template_dir, timeout)[0]
+
+
+def solve_and_derive(
+    paths: list[Path],
+    fmt: str,
+    method: str | None = None,
+    template_dir: Path | None = None,
+    timeout: float | None = None,
+) -> tuple[list[str | bytes], list[Derivation]]:
+    """:func:`solve_specs`, and the derivations it rendered (for :func:`figure_files`)."""
     from tutgen.engine.pipeline import derive_with_deadline
     from tutgen.limits import deadline, stage
     from tutgen.spec.validate import load_system
@@ -163,7 +174,7 @@ def solve_specs(
         for path, d in zip(paths, derivations, strict=True):
             stage("rendering", f"{path.name} as {fmt}")
             texts.append(render(d, fmt, template_dir))
-        return texts
+        return texts, derivations
 
 
 #: Used where the file system cannot be asked (``pathconf``): the limits of Linux and macOS.
@@ -269,22 +280,30 @@ def write_outputs(targets: list[Path], texts: list[str] | list[bytes] | list[str
             raise
 
 
-def figure_files(specs: list[Path], targets: list[Path], *, force: bool) -> tuple[list[Path], list[str | bytes]]:
+def figure_files(
+    specs: list[Path], targets: list[Path], *, force: bool, derivations: Sequence[Derivation] | None = None
+) -> tuple[list[Path], list[str | bytes]]:
     """The files a Markdown solution refers to, to be written beside it: the generated figure's SVG
-    (``<spec>.figure.svg``) and a copy of the spec's own picture (``figure.file``, same relative path).
-    Refuses to overwrite an existing file without ``force``, as the solutions themselves."""
+    (``<spec>.figure.svg``), the free-body diagrams of its Newton–Euler step (``<spec>.fbd-<body>.svg``,
+    with ``derivations``, where that step is printed) and a copy of the spec's own picture
+    (``figure.file``, same relative path). Refuses to overwrite an existing file without ``force``, as
+    the solutions themselves."""
     from tutgen.figure.picture import read_picture
     from tutgen.figure.view import svg_file
+    from tutgen.render.sections.newton_euler import free_bodies
     from tutgen.spec.validate import load_system
 
     paths: list[Path] = []
     contents: list[str | bytes] = []
-    for spec, target in zip(specs, targets, strict=True):
-        system = load_system(spec)
+    for i, (spec, target) in enumerate(zip(specs, targets, strict=True)):
+        system = load_system(spec) if derivations is None else derivations[i].system
         svg = svg_file(system)
         if svg is not None:
             paths.append(target.parent / svg[0])
             contents.append(svg[1])
+        for view in free_bodies(derivations[i]) if derivations is not None else []:
+            paths.append(target.parent / view["svg"])
+            contents.append(view["svg_text"])
         picture = system.figure.file if system.figure is not None else None
         if picture is not None and picture.kind.value != "pdf":
             copy = target.parent / picture.path

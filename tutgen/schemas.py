@@ -223,6 +223,18 @@ _FIGURE = {
         "sizes": {"type": "object", "additionalProperties": {"type": "number"}},
         "labels": {"type": "array", "items": {"type": "string"}},
         "remarks": {"type": "array", "items": {"type": "string"}},
+        "free_bodies": {
+            "type": "array",
+            "items": {
+                "type": "object",
+                "properties": {
+                    "body": {"type": "string"},
+                    "svg": {"type": "string"},
+                    "labels": {"type": "array", "items": {"type": "string"}},
+                },
+                "required": ["body", "svg", "labels"],
+            },
+        },
     },
 }
 _CHECK = {

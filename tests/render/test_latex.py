@@ -76,7 +76,7 @@ def test_view_is_plain_data_with_raw_text() -> None:
 
     assert plain(view)
     kinds = {b["kind"] for s in view["sections"] for b in s["blocks"]}
-    assert kinds <= {"text", "subheading", "math", "boxed"}
+    assert kinds <= {"text", "subheading", "math", "boxed", "freebody"}  # tutgen/render/blocks.py
     eom = next(s for s in view["sections"] if s["title"] == "Equations of motion")
     assert [b["kind"] for b in eom["blocks"]] == ["boxed", "boxed"]
     assert all(r"\sin{\left(" not in b["tex"] for s in view["sections"] for b in s["blocks"] if "tex" in b)

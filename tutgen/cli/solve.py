@@ -80,7 +80,7 @@ def solve(
     Existing files are overwritten only with --force, and never a spec itself.
     A PDF is written only to a file: --format pdf needs -o.
     """
-    from tutgen.api import figure_files, plan_outputs, solve_specs, write_outputs
+    from tutgen.api import figure_files, plan_outputs, solve_and_derive, write_outputs
     from tutgen.errors import UsageError
 
     if output is None and format is Format.pdf:
@@ -90,13 +90,13 @@ def solve(
     if output is not None:
         plan_outputs(specs, output, format.value, force=force)  # refuse early, before the slow part
     chosen = method.value if method is not None else None
-    texts = solve_specs(specs, format.value, chosen, template_dir, timeout=timeout)
+    texts, derivations = solve_and_derive(specs, format.value, chosen, template_dir, timeout=timeout)
     if output is None:
         assert isinstance(texts[0], str)
         stdout_write(texts[0])
         return
     targets = plan_outputs(specs, output, format.value, force=force)
     if format is Format.md:  # the figures beside the .md (tutgen/figure; docs/figures.md)
-        figures, contents = figure_files(specs, targets, force=force)
+        figures, contents = figure_files(specs, targets, force=force, derivations=derivations)
         targets, texts = targets + figures, [*texts, *contents]
     write_outputs(targets, texts)

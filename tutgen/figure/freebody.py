@@ -62,7 +62,9 @@ class BodyForce:
     to the name) or a name (``R_1x`` -> ``R_{1x}``), never TeX; ``at``: where it acts, in ``at_frame``
     (the body's frame by default; a moment's point only places its arrow); ``vector``: its components
     or just a direction, in ``frame``; ``toward``: instead of ``vector``, a force along the line to a
-    point of another body (a spring's or damper's other end), pulling.
+    point of another body (a spring's or damper's other end), pulling; ``tex``: the label as TeX that
+    tutgen itself wrote (the Newton–Euler step's own names, ``\\mathbf{R}_{\\mathrm{pivot}}``), used when
+    it is in the label vocabulary (:func:`tutgen.figure.texlabel.is_safe_tex`), else ``label`` is.
     """
 
     name: str
@@ -73,6 +75,7 @@ class BodyForce:
     at_frame: Frame = Frame.BODY
     moment: bool = False
     toward: Endpoint | None = None
+    tex: str = ""
 
 
 def free_body_diagram(system: System, body_name: str, forces: Sequence[BodyForce] | None = None) -> Drawing:
@@ -345,7 +348,7 @@ class _FreeBodyBuilder(SystemBuilder):
         else:
             vec = self.world(body, force.vector, force.frame, point=False)
         names = f"force:{force.name}"
-        tex = self.force_tex(force.label, force.name)
+        tex = force.tex if force.tex and is_safe_tex(force.tex) else self.force_tex(force.label, force.name)
         norm = float(np.linalg.norm(vec))
         if norm < 1e-12:
             self.remarks.append(f"the force {force.name} is zero at the drawing's pose and is not drawn")

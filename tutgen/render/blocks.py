@@ -16,7 +16,11 @@ Blocks, the items of ``section.blocks``:
   in ``align*`` (LaTeX) or ``aligned`` (Markdown): each row has one ``&``, before its relation sign
   (the line breaking of tutgen.render.layout; nothing is ever scaled to fit);
 - ``{"kind": "boxed", "tex": ..., "lines": [...], "rows": [...]}``: a displayed final answer, set
-  apart (its rows are laid out a little narrower, for the box).
+  apart (its rows are laid out a little narrower, for the box);
+- ``{"kind": "freebody", "body": ..., "tikz": ..., "svg": ..., "labels": [...]}``: a body's free-body
+  diagram in the planar Newton–Euler step: ``tikz`` the picture for LaTeX (set at its size, never
+  scaled), ``svg`` the relative name of its SVG beside a Markdown solution, ``labels`` what it names
+  (tutgen.render.sections.newton_euler.freebody_block).
 
 ``remarks`` and ``checks`` (tutgen's own sentences, maths typeset), ``section.intro``,
 ``statement_parts`` (the statement, its ``$…$`` maths typeset) and each item of ``given`` and of

@@ -19,6 +19,7 @@ from tutgen.engine.steps import Step
 from tutgen.figure.view import figure_json
 from tutgen.model.system import Ask
 from tutgen.render.grammar import grammar_text
+from tutgen.render.sections.newton_euler import free_bodies
 from tutgen.version import __version__
 
 JSON_FORMAT_VERSION = 1
@@ -161,10 +162,16 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
         "parameters": {p.name: (value(p.value) if p.value is not None else None) for p in system.parameters},
         "results": results,
         "steps": steps_json(d),  # additive: the worked solution's steps, docs/json-output.md#steps
-        "figure": figure_json(system),  # tutgen/figure/view.py; additive, docs/json-output.md
+        "figure": {**figure_json(system), "free_bodies": _free_bodies(d)},  # additive, docs/json-output.md
         "remarks": list(d.remarks),
         "checks": [{"name": c.name, "passed": c.passed, "detail": c.detail} for c in d.checks],
     }
+
+
+def _free_bodies(d: Derivation) -> list[dict[str, Any]]:
+    """The free-body diagrams of the planar Newton–Euler step where it is printed: each body's SVG
+    beside a Markdown solution and what it labels (``force:<the step's name of the force>``)."""
+    return [{"body": v["body"], "svg": v["svg"], "labels": v["labels"]} for v in free_bodies(d)]
 
 
 def _newton_euler(ne: NewtonEuler, num: Any) -> dict[str, Any]:

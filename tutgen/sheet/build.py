@@ -238,7 +238,13 @@ def _md_figure(view: dict[str, Any], figure: tuple[str, str] | None) -> dict[str
     """A problem's view for a Markdown sheet: its figure by the sheet's own relative path. The spec's own
     picture (``figure.file``) is relative to the spec, not to the sheet, so it is left to the LaTeX sheets."""
     shown = {**view["figure"], "generated": figure is not None, "svg": figure[0] if figure else "", "file_md": False}
-    return {**view, "figure": shown}
+    # the Newton–Euler step's free-body diagrams are TikZ in the LaTeX sheets; a Markdown sheet would need
+    # their SVGs in figures/, which file_names cannot plan before the derivations: left out here
+    solution = view["solution"]
+    sections = [
+        {**sec, "blocks": [b for b in sec["blocks"] if b["kind"] != "freebody"]} for sec in solution["sections"]
+    ]
+    return {**view, "figure": shown, "solution": {**solution, "sections": sections}}
 
 
 def derive_problems(

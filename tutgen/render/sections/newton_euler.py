@@ -7,6 +7,7 @@ from typing import Any
 
 import sympy as sp
 
+from tutgen.engine.derivation import Derivation
 from tutgen.engine.ne_types import (
     PROJECTION_REMARK,
     EliminationStep,
@@ -17,6 +18,7 @@ from tutgen.engine.ne_types import (
     PlanarForce,
     PlanarNewtonEuler,
 )
+from tutgen.figure.freebody import BodyForce, Frame
 from tutgen.model.system import Ask, Coordinate, JointKind
 from tutgen.render.blocks import (
     SolutionContext,
@@ -38,7 +40,8 @@ def newton_euler(c: SolutionContext) -> dict[str, Any] | None:
     if d.newton_euler is None or Ask.EQUATIONS_OF_MOTION not in s.ask:
         return None
     if d.newton_euler.planar is not None:
-        return planar_section(d.newton_euler, d.newton_euler.planar, s.coordinates, c.tex, c.num)
+        diagrams = {v["body"]: v for v in free_bodies(d)}
+        return planar_section(d.newton_euler, d.newton_euler.planar, s.coordinates, c.tex, c.num, diagrams)
     return newton_euler_section(d.newton_euler, s.coordinates, c.tex, c.num)
 
 
@@ -323,10 +326,16 @@ def _axis_name(tex: TexPrinter, axis: tuple[sp.Expr, sp.Expr]) -> str:
 
 
 def planar_section(
-    ne: NewtonEuler, planar: PlanarNewtonEuler, coordinates: tuple[Coordinate, ...], tex: TexPrinter, num: Any
+    ne: NewtonEuler,
+    planar: PlanarNewtonEuler,
+    coordinates: tuple[Coordinate, ...],
+    tex: TexPrinter,
+    num: Any,
+    diagrams: dict[str, dict[str, Any]] | None = None,
 ) -> dict[str, Any]:
     """Per body: its motion, its free-body diagram and its three balances; then the equations of motion,
-    the reactions eliminated one coordinate at a time; then the reactions."""
+    the reactions eliminated one coordinate at a time; then the reactions. ``diagrams``: per body, its
+    drawn free body (:func:`free_bodies`), shown before the list of its forces."""
     _name_unknowns(planar, tex)
     sec = section("Newton–Euler", _PLANAR_INTRO)
     blocks = sec["blocks"]
@@ -353,6 +362,8 @@ def planar_section(
                 motion.append(f"\\alpha = {tex(num(m.angular_acceleration[2]))}")
             blocks.append(display(",\\quad ".join(motion)))
         coords = {c.name: c.latex for c in coordinates}
+        if diagrams and b.body in diagrams:
+            blocks.append(freebody_block(diagrams[b.body]))
         blocks.append(stacked(_force_lines(b, mass, coords, tex, num)))
         blocks.append(
             stacked(
@@ -430,3 +441,69 @@ def _step_blocks(
     else:
         lines[-1] += " = 0"
     return [para(*intro), stacked(lines)]
+
+
+# -- the free-body diagrams of the planar step --------------------------------------------------
+
+
+def free_bodies(d: Derivation) -> list[dict[str, Any]]:
+    """The drawn free bodies of the planar Newton–Euler step, as
+    :func:`tutgen.figure.view.free_body_views` gives them (``body``, ``tikz``, ``svg``, ``svg_text``,
+    ``labels``, ``remarks``), each with the forces of its balance under the names the step gives them;
+    empty where the step is not printed (no Newton–Euler, no equations of motion asked, a spatial
+    system) or its figure is not drawn in the plane. The section and the writer of the files beside a
+    Markdown solution (:func:`tutgen.api.figure_files`) both take them from here."""
+    from tutgen.figure.view import free_body_views
+
+    ne = d.newton_euler
+    if ne is None or ne.planar is None or Ask.EQUATIONS_OF_MOTION not in d.system.ask:
+        return []
+    coords = {c.name: c.latex for c in d.system.coordinates}
+    forces = {b.body: diagram_forces(b, coords) for b in ne.planar.balances}
+    # only the bodies the step has a balance for (a massless body has none)
+    return [v for v in free_body_views(d.system, forces) if v["body"] in forces]
+
+
+def diagram_forces(b: PlanarBalance, coords: dict[str, str]) -> tuple[BodyForce, ...]:
+    """A balance's forces for its diagram: one arrow per force of the step, named as the step names
+    it (``name``: the step's words, ``gravity``, ``reaction at joint 'pivot'``; label: the step's
+    symbol), and a couple's arrow beside a force that has one (``<name>:couple``). A force on the
+    parent's side (a reaction, a load's or a drive's reaction) keeps its symbol without the sign: the
+    arrow is drawn reversed, as a student draws Newton's third law. Points and vectors in world axes."""
+    out = []
+    for f in b.forces:
+        force_name, couple_name = _label(f, coords)
+        force_tex, couple_tex = _figure_tex(force_name), _figure_tex(couple_name.split(" =", 1)[0])
+        at = (f.point[0], f.point[1], sp.Integer(0))
+        has_force = f.force[0] != 0 or f.force[1] != 0
+        if has_force:
+            vector = (f.force[0], f.force[1], sp.Integer(0))
+            out.append(BodyForce(f.name, f.source or f.name, at, vector, Frame.WORLD, Frame.WORLD, tex=force_tex))
+        if f.torque != 0:
+            name = f"{f.name}:couple" if has_force else f.name
+            vector = (sp.Integer(0), sp.Integer(0), f.torque)
+            out.append(
+                BodyForce(name, f.source or f.name, at, vector, Frame.WORLD, Frame.WORLD, moment=True, tex=couple_tex)
+            )
+    return tuple(out)
+
+
+def _figure_tex(symbol: str) -> str:
+    """The step's symbol in the figure's label vocabulary: no sign (the arrow shows the direction),
+    a bold letter braced (``\\mathbf W`` -> ``\\mathbf{W}``, which the SVG also sets upright)."""
+    symbol = symbol.strip().removeprefix("-")
+    if symbol.startswith("\\mathbf ") and len(symbol) > 8:
+        symbol = "\\mathbf{" + symbol[8] + "}" + symbol[9:]
+    return symbol
+
+
+def freebody_block(view: dict[str, Any]) -> dict[str, Any]:
+    """A ``freebody`` block: the drawn free body of one body, TikZ for LaTeX, the SVG beside the
+    Markdown by its relative name (docs/figures.md)."""
+    return {
+        "kind": "freebody",
+        "body": view["body"],
+        "tikz": view["tikz"],
+        "svg": view["svg"],
+        "labels": view["labels"],
+    }
