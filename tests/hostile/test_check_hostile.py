@@ -13,8 +13,10 @@ from __future__ import annotations
 import csv
 import json
 import os
+import tempfile
 import time
 import xml.etree.ElementTree as ET
+from functools import cache
 from pathlib import Path
 from typing import Any
 
@@ -29,6 +31,18 @@ from tutgen.errors import EXIT_CHECK_FAILED, EXIT_INVALID_SPEC, EXIT_USAGE
 DATA = ROOT / "tests" / "hostile" / "check"
 P05 = SPECS / "tutorial-1" / "p05-rr-arm.yaml"
 P01 = SPECS / "tutorial-1" / "p01-composite-inertia.yaml"
+
+
+@cache
+def p05_bare() -> Path:
+    """p05 without its ``marking:`` (the tutorial's items): the class runs below mark with no key at all,
+    so the items graded are derived from the spec's ask. Derived as p05 (see ``cached_derive``)."""
+    lines = P05.read_text(encoding="utf-8").splitlines(keepends=True)
+    bare = Path(tempfile.mkdtemp(prefix="tutgen-hostile-")) / "p05-rr-arm.yaml"
+    bare.write_text("".join(ln for ln in lines if not ln.startswith(("marking:", "# what tutgen check marks"))))
+    return bare
+
+
 #: What the spec p05 asks for (its `ask`: everything), so what a file that answers nothing misses.
 P05_ASKED = [
     "kinetic_energy",
@@ -79,7 +93,10 @@ def cached_derive(monkeypatch: pytest.MonkeyPatch) -> None:
     """Serve ``derive`` from the session cache: the command still loads, validates and marks."""
     for spec in (P05, P01):
         solved(str(spec))
-    monkeypatch.setattr(tutgen.engine.pipeline, "derive", lambda system, *_, **__: solved(system.source)[1])
+    same = {str(p05_bare()): str(P05)}
+    monkeypatch.setattr(
+        tutgen.engine.pipeline, "derive", lambda system, *_, **__: solved(same.get(system.source, system.source))[1]
+    )
 
 
 def children() -> list[int]:
@@ -112,7 +129,19 @@ def test_check_hostile_class_run(tmp_path: Path) -> None:
     junit, summary = tmp_path / "junit.xml", tmp_path / "summary.csv"
     before = set(children())
     result = run(
-        "check", P05, *files, "--format", "json", "--junit", junit, "--summary", summary, "--timeout", "2", "-j", "2"
+        "check",
+        p05_bare(),
+        *files,
+        "--format",
+        "json",
+        "--junit",
+        junit,
+        "--summary",
+        summary,
+        "--timeout",
+        "2",
+        "-j",
+        "2",
     )
     assert set(children()) <= before, "a marking process was left running"
     assert result.exit_code == EXIT_INVALID_SPEC, result.output  # the worst verdict: invalid files
@@ -154,7 +183,7 @@ def test_check_hostile_file_time_limit_kills_the_file_not_the_run(tmp_path: Path
     files = [DATA / "slow-expansion.yaml", DATA / "hidden-zero-right.yaml"]
     before = set(children())
     start = time.monotonic()
-    result = run("check", P05, *files, "--timeout", "0", "--file-timeout", "1", "--summary", summary, "-j", "1")
+    result = run("check", p05_bare(), *files, "--timeout", "0", "--file-timeout", "1", "--summary", summary, "-j", "1")
     elapsed = time.monotonic() - start
     assert set(children()) <= before, "a marking process was left running"
     assert result.exit_code == EXIT_CHECK_FAILED, result.output
