@@ -53,7 +53,7 @@ def test_cli_signals_end_with_the_shell_codes(
     def stop(*args: object, **kwargs: object) -> None:
         raise exc()
 
-    monkeypatch.setattr(tutgen.api, "solve_specs", stop)
+    monkeypatch.setattr(tutgen.api, "solve_and_derive", stop)  # what `tutgen solve` calls
     result = invoke("solve", SPEC)
     assert result.exit_code == code
     assert result.stderr.strip() == word
