@@ -63,7 +63,13 @@ def test_the_sheet_schema_refuses_what_the_reader_refuses(change: dict[str, Any]
     assert errors("sheet", doc | change) != []
 
 
-@pytest.mark.parametrize("spec", [p for p in all_specs() if p.stem not in HEAVY_SPECS], ids=lambda p: p.stem)
+@pytest.mark.parametrize(
+    "spec",
+    # the numeric PUMA's JSON is built for this test alone (half a minute): with -m slow
+    [pytest.param(p, marks=pytest.mark.slow) if p.stem == "puma560-numeric" else p for p in all_specs()
+     if p.stem not in HEAVY_SPECS],
+    ids=lambda p: p.stem,
+)  # fmt: skip
 def test_every_solution_json_fits_the_solution_schema(spec: Any) -> None:
     assert errors("solution", json.loads(json.dumps(solved(str(spec))[2].doc))) == []
 

@@ -227,6 +227,7 @@ def tool_arm() -> dict[str, Any]:
     }
 
 
+@pytest.mark.slow  # half a minute: the general route of a 5-joint arm; the 3R/4R/6R routes are checked by default
 def test_serial_tool_arm_equals_general_route() -> None:
     system = system_of(tool_arm())
     assert is_serial_chain(system)
