@@ -90,9 +90,11 @@ def compile_pdf(tex: str, timeout: float | None = None, files: Mapping[str, byte
     limit = own if budget is None else min(own, budget)
     if budget is not None:
         stage("LaTeX compile", "compiling the PDF")  # what the alarm, if it comes first, names
-    work = Path(tempfile.mkdtemp(prefix="tutgen-tex-"))
+    work: Path | None = None
     proc: subprocess.Popen[bytes] | None = None
     try:
+        with shielded():  # made inside the try, so an alarm that comes now still finds it to remove
+            work = Path(tempfile.mkdtemp(prefix="tutgen-tex-"))
         (work / "solution.tex").write_text(tex, encoding="utf-8")
         for name, data in sorted(inputs.items()):
             (work / name).write_bytes(data)
@@ -131,7 +133,19 @@ def compile_pdf(tex: str, timeout: float | None = None, files: Mapping[str, byte
         with shielded():  # neither the alarm nor a second Ctrl-C may cut the cleanup short
             if proc is not None:
                 _kill_group(proc)
-            shutil.rmtree(work, ignore_errors=True)
+            if work is not None:
+                _remove(work)
+
+
+def _remove(work: Path) -> None:
+    """Remove the compile's directory; again while it reappears: a pdflatex killed on the other core may
+    still create a file between rmtree's listing and its last rmdir (seen under a loaded test run)."""
+    ends = time.monotonic() + 2.0
+    while True:
+        shutil.rmtree(work, ignore_errors=True)
+        if not work.exists() or time.monotonic() > ends:
+            return
+        time.sleep(0.02)
 
 
 def _watch(proc: subprocess.Popen[bytes], work: Path, limit: float, given: int = 0) -> str | None:
@@ -189,6 +203,13 @@ def _kill_group(proc: subprocess.Popen[bytes]) -> None:
         proc.wait(timeout=10)
     except subprocess.TimeoutExpired:  # pragma: no cover - SIGKILL is not ignored
         pass
+    ends = time.monotonic() + 2.0  # and until the rest of the group (pdflatex) is gone
+    while time.monotonic() < ends:
+        try:
+            os.killpg(proc.pid, 0)
+        except (ProcessLookupError, PermissionError):
+            return
+        time.sleep(0.01)
 
 
 def _log_excerpt(work: Path) -> str:
