@@ -37,7 +37,14 @@ __all__ = [
 #: Seconds a derivation may take unless ``--timeout`` says otherwise.
 DEFAULT_TIMEOUT: float = 120
 
-_state: dict[str, Any] = {"step": "start", "stage": "derivation", "armed": False, "expired": None, "ends": None}
+_state: dict[str, Any] = {
+    "step": "start",
+    "stage": "derivation",
+    "armed": False,
+    "expired": None,
+    "ends": None,
+    "shield": 0,  # how many shielded() blocks are running (the alarm waits for them)
+}
 
 #: The signals :func:`shielded` holds off.
 _SHIELDED = {signal.SIGALRM, signal.SIGINT, signal.SIGTERM} if hasattr(signal, "SIGALRM") else set()
@@ -85,10 +92,15 @@ def shielded() -> Iterator[None]:
     if not usable:
         yield
         return
+    # the mask holds the signals off this thread; in a process with other threads (a worker pool's, a
+    # test runner's) another thread may take SIGALRM and Python still runs the handler here, so the
+    # deadline's handler also looks at this count and waits (tutgen/limits.py, deadline)
+    _state["shield"] = int(_state.get("shield") or 0) + 1
     old = signal.pthread_sigmask(signal.SIG_BLOCK, _SHIELDED)
     try:
         yield
     finally:
+        _state["shield"] = int(_state.get("shield") or 1) - 1
         signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
@@ -118,6 +130,9 @@ def deadline(seconds: float | None) -> Iterator[None]:
     assert seconds is not None
 
     def expire(signum: int, frame: object) -> None:
+        if _state.get("shield"):  # a cleanup that must not be cut short: come back when it is done
+            signal.setitimer(signal.ITIMER_REAL, 0.05)
+            return
         # sympy has a few ``except Exception`` blocks: keep firing until the block is really left
         _state["expired"] = seconds
         signal.setitimer(signal.ITIMER_REAL, 0.25)
