@@ -73,10 +73,8 @@ class SpecErrors(TutgenError, ValueError):
         return "\n".join(str(e) for e in self.errors)
 
 
-class DerivationError(TutgenError):
-    """A valid spec that tutgen cannot derive (or a derivation that failed its own checks)."""
-
-    exit_code = EXIT_CANNOT_DERIVE
+class LocatedError(TutgenError):
+    """An error with a message and, where one is known, the place it is about (``file:line:col: error: …``)."""
 
     def __init__(self, message: str, location: Location | None = None) -> None:
         self.location = location
@@ -86,6 +84,12 @@ class DerivationError(TutgenError):
     def __str__(self) -> str:
         where = f"{self.location}: " if self.location else ""
         return f"{where}error: {self.message}"
+
+
+class DerivationError(LocatedError):
+    """A valid spec that tutgen cannot derive (or a derivation that failed its own checks)."""
+
+    exit_code = EXIT_CANNOT_DERIVE
 
 
 class AgreementError(DerivationError):
@@ -142,20 +146,11 @@ class DerivationTimeout(DerivationError):
         super().__init__(f"{text}; simplify the spec or raise --timeout")
 
 
-class SimulationError(TutgenError):
+class SimulationError(LocatedError):
     """`tutgen simulate` could not integrate to the end: a singular mass matrix at a state along the way
     (the trajectory so far is written), the integrator failed, or ``--timeout`` ran out."""
 
     exit_code = EXIT_SIMULATION_STOPPED
-
-    def __init__(self, message: str, location: Location | None = None) -> None:
-        self.location = location
-        self.message = message
-        super().__init__(message)
-
-    def __str__(self) -> str:
-        where = f"{self.location}: " if self.location else ""
-        return f"{where}error: {self.message}"
 
 
 class SimulationCheckError(SimulationError):

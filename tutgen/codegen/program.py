@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from tutgen.engine.derivation import Derivation
+from tutgen.engine.recursive import needed_definitions
 
 __all__ = [
     "Function",
@@ -355,7 +356,7 @@ def _function(
     outputs = [result] + ([solve] if solve is not None else [])
     assignments: list[tuple[sp.Symbol, sp.Expr]] = []
     if definitions:
-        needed = _needed(definitions, outputs)
+        needed = list(needed_definitions(definitions, outputs))
         fresh = {s: sp.Symbol(f"{letter}{k}") for k, (s, _) in enumerate(needed)}
         assignments = [(fresh[s], e.xreplace(fresh)) for s, e in needed]
         outputs = [m.xreplace(fresh) for m in outputs]
@@ -376,21 +377,6 @@ def _function(
         result=rebuilt[0],
         solve=rebuilt[1] if solve is not None else None,
     )
-
-
-def _needed(
-    definitions: Sequence[tuple[sp.Symbol, sp.Expr]], matrices: Sequence[sp.MatrixBase]
-) -> list[tuple[sp.Symbol, sp.Expr]]:
-    index = {s: i for i, (s, _) in enumerate(definitions)}
-    todo = [s for m in matrices for e in m for s in e.free_symbols if s in index]
-    used: set[sp.Symbol] = set()
-    while todo:
-        s = todo.pop()
-        if s in used:
-            continue
-        used.add(s)
-        todo += [t for t in definitions[index[s]][1].free_symbols if t in index and t not in used]
-    return [d for d in definitions if d[0] in used]
 
 
 def uses(function: Function, program: Program) -> Mapping[str, list[tuple[int, str]]]:

@@ -75,14 +75,14 @@ class NestedDynamics:
 
     def needed(self, *matrices: sp.MatrixBase) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
         """The definitions the given matrices use, directly or through other definitions, in order."""
-        return _needed(self.definitions, matrices)
+        return needed_definitions(self.definitions, matrices)
 
     def substituted(self) -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix, sp.ImmutableMatrix]:
         """H, C q_dot and G in coordinates, rates and parameters (back-substitution, no expansion)."""
         return expand(self)
 
 
-def _needed(
+def needed_definitions(
     definitions: Sequence[tuple[sp.Symbol, sp.Expr]], matrices: Sequence[sp.MatrixBase]
 ) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
     index = {s: i for i, (s, _) in enumerate(definitions)}
@@ -561,7 +561,7 @@ def nested_dynamics(system: System) -> NestedDynamics:
     gravity_vector = sp.ImmutableMatrix(n, 1, gv)
     # drop what no output uses (the composite inertia above the last revolute joint, constants of
     # massless links): the names keep their numbers, so the listing may skip some x_k
-    definitions = _needed(prog.definitions, (mass_matrix, coriolis_vector, gravity_vector))
+    definitions = needed_definitions(prog.definitions, (mass_matrix, coriolis_vector, gravity_vector))
     t_prune = time.perf_counter()
     result = NestedDynamics(
         coordinates=coords,

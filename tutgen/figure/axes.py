@@ -79,7 +79,10 @@ class AxesDrawing(ElementDrawing):
                 self.label("gravity", tex, ((tail[0] + tip[0]) / 2, (tail[1] + tip[1]) / 2), (1.0, 0.0))
         if not self.s.bodies:
             return  # T and U given: there is no geometry to put axes on
-        origin = (box.x0 - 1.25, box.y0 - 0.5)  # clear of the first joint's labels (a torque's τ₁)
+        self.axes_at((box.x0 - 1.25, box.y0 - 0.5), 0.8)  # clear of the first joint's labels (a torque's τ₁)
+
+    def axes_at(self, origin: tuple[float, float], length: float) -> None:
+        """The world axes x, y (and z when spatial) as arrows of ``length`` cm from ``origin`` on the page."""
         axes = [(0, "x"), (1, "y"), (2, "z")]
         if self.view == "planar":
             axes = [(k, n) for k, n in axes if k in self.screen]
@@ -87,7 +90,7 @@ class AxesDrawing(ElementDrawing):
             d = self.page_dir(np.zeros(3), np.eye(3)[k])
             if d is None:
                 continue
-            end = (origin[0] + d[0] * 0.8, origin[1] + d[1] * 0.8)
+            end = (origin[0] + d[0] * length, origin[1] + d[1] * length)
             self.arrow(origin, end)
             self.label(f"axis:{letter}", letter, end, d)
 

@@ -448,17 +448,7 @@ class _FreeBodyBuilder(SystemBuilder):
         box = pts[0] if pts else Box(0, 0, 1, 1)
         for b in pts[1:]:
             box = box.union(b)
-        origin: Point = (box.x0 - 1.3, box.y0 - 0.2)
-        axes = [(0, "x"), (1, "y"), (2, "z")]
-        if self.view == "planar":
-            axes = [(k, n) for k, n in axes if k in self.screen]
-        for k, letter in axes:
-            d = self.page_dir(np.zeros(3), np.eye(3)[k])
-            if d is None:
-                continue
-            end = (origin[0] + d[0] * 0.6, origin[1] + d[1] * 0.6)
-            self.arrow(origin, end)
-            self.label(f"axis:{letter}", letter, end, d)
+        self.axes_at((box.x0 - 1.3, box.y0 - 0.2), 0.6)
 
 
 def _on_one_line(a: Point, b: Point, c: Point, d: Point) -> bool:
