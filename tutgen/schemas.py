@@ -139,6 +139,8 @@ _BODY = {
         "inertia_tensor_com": _MATRIX,
         "principal_moments": {"type": "array", "items": {"type": "number"}, "minItems": 3, "maxItems": 3},
         "principal_axes": {"type": "array", "items": _VEC3, "minItems": 3, "maxItems": 3},
+        "principal_moments_com": {"type": "array", "items": {"type": "number"}, "minItems": 3, "maxItems": 3},
+        "principal_axes_com": {"type": "array", "items": _VEC3, "minItems": 3, "maxItems": 3},
         "parts": {"type": "object", "additionalProperties": _PART},
     },
     "required": ["mass", "center_of_mass", "inertia_tensor"],
@@ -164,6 +166,84 @@ _ROTOR = {
     },
     "required": ["coordinate", "rotor_inertia", "gear_ratio", "reflected_inertia"],
 }
+_PAIR = {"type": "array", "items": _VALUE, "minItems": 2, "maxItems": 2}
+_PLANAR_FORCE = {
+    "type": "object",
+    "properties": {
+        "name": {"type": "string"},
+        "kind": {"type": "string"},
+        "source": {"type": ["string", "null"]},
+        "point": _PAIR,
+        "force": _PAIR,
+        "torque": _VALUE,
+    },
+    "required": ["name", "kind", "source", "point", "force", "torque"],
+}
+_PLANAR = {
+    "type": "object",
+    "properties": {
+        "balances": {
+            "type": "array",
+            "items": {
+                "type": "object",
+                "properties": {
+                    "body": {"type": "string"},
+                    "about": {"type": "string"},
+                    "joint": {"type": "string"},
+                    "point": _PAIR,
+                    "forces": {"type": "array", "items": _PLANAR_FORCE},
+                    "sum_fx": _VALUE,
+                    "sum_fy": _VALUE,
+                    "sum_m": _VALUE,
+                },
+                "required": ["body", "about", "joint", "point", "forces", "sum_fx", "sum_fy", "sum_m"],
+            },
+        },
+        "elimination": {
+            "type": "array",
+            "items": {
+                "type": "object",
+                "properties": {
+                    "coordinate": {"type": "string"},
+                    "joint": {"type": "string"},
+                    "contributions": {
+                        "type": "array",
+                        "items": {
+                            "type": "object",
+                            "properties": {
+                                "body": {"type": "string"},
+                                "kind": {"enum": ["moment", "force_moment", "force"]},
+                                "via": {"type": ["string", "null"]},
+                                "value": _VALUE,
+                            },
+                            "required": ["body", "kind", "via", "value"],
+                        },
+                    },
+                    "eliminated": {"type": "array", "items": {"type": "string"}},
+                    "equation": _VALUE,
+                },
+                "required": ["coordinate", "joint", "contributions", "eliminated", "equation"],
+            },
+        },
+        "reactions": {
+            "type": "object",
+            "additionalProperties": {
+                "type": "object",
+                "properties": {
+                    "kind": {"enum": ["revolute", "prismatic", "fixed"]},
+                    "parent": {"type": "string"},
+                    "child": {"type": "string"},
+                    "unknowns": {"type": "object", "additionalProperties": _VALUE},
+                    "force": _PAIR,
+                    "moment": _VALUE,
+                    "solved_from": {"type": "string"},
+                },
+                "required": ["kind", "parent", "child", "unknowns", "force", "moment", "solved_from"],
+            },
+        },
+    },
+    "required": ["balances", "elimination", "reactions"],
+}
 _NEWTON_EULER = {
     "type": "object",
     "properties": {
@@ -179,6 +259,7 @@ _NEWTON_EULER = {
         },
         "agrees_with_lagrange": {"const": True},
         "remarks": {"type": "array", "items": {"type": "string"}},
+        "planar": _PLANAR,
     },
     "required": ["method", "equations_of_motion", "agrees_with_lagrange"],
 }

@@ -13,6 +13,7 @@ from typing import Any
 import sympy as sp
 
 from tutgen.engine.derivation import Derivation
+from tutgen.engine.ne_types import PlanarNewtonEuler
 from tutgen.engine.newton_euler import NewtonEuler
 from tutgen.engine.serial import LARGE
 from tutgen.engine.steps import Step
@@ -74,6 +75,9 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
             if principal.origin is not None:
                 entry["principal_moments"] = list(principal.origin.moments)
                 entry["principal_axes"] = [list(a) for a in principal.origin.axes]
+            if principal.com is not None:  # additive: about the centre of mass G, docs/json-output.md
+                entry["principal_moments_com"] = list(principal.com.moments)
+                entry["principal_axes_com"] = [list(a) for a in principal.com.axes]
             entry["parts"] = {
                 p.name: {
                     "shape": p.shape.value,
@@ -186,6 +190,68 @@ def _newton_euler(ne: NewtonEuler, num: Any) -> dict[str, Any]:
         },
         "agrees_with_lagrange": ne.agrees_with_lagrange,
         "remarks": list(ne.remarks),
+        **({"planar": _planar(ne.planar, num)} if ne.planar is not None else {}),
+    }
+
+
+def _planar(planar: PlanarNewtonEuler, num: Any) -> dict[str, Any]:
+    """Newton-Euler as taught for a planar system (additive, docs/json-output.md#planar): per body its
+    free-body diagram (every force, D'Alembert's included: where it acts, its x, y components, its
+    couple about z) and its three balances, each = 0, with the reactions as unknowns; the elimination,
+    coordinate by coordinate; the reactions solved last."""
+
+    def pair(xy: tuple[sp.Expr, sp.Expr]) -> list[Any]:
+        return [value(num(xy[0])), value(num(xy[1]))]
+
+    return {
+        "balances": [
+            {
+                "body": b.body,
+                "about": b.about,
+                "joint": b.joint,
+                "point": pair(b.point),
+                "forces": [
+                    {
+                        "name": f.name,
+                        "kind": f.kind.value,
+                        "source": f.source,
+                        "point": pair(f.point),
+                        "force": pair(f.force),
+                        "torque": value(num(f.torque)),
+                    }
+                    for f in b.forces
+                ],
+                "sum_fx": value(num(b.sum_fx)),
+                "sum_fy": value(num(b.sum_fy)),
+                "sum_m": value(num(b.sum_m)),
+            }
+            for b in planar.balances
+        ],
+        "elimination": [
+            {
+                "coordinate": s.coordinate,
+                "joint": s.joint,
+                "contributions": [
+                    {"body": c.body, "kind": c.kind, "via": c.via, "value": value(num(c.expr))}
+                    for c in s.contributions
+                ],
+                "eliminated": [str(u) for u in s.eliminated],
+                "equation": value(num(s.equation)),
+            }
+            for s in planar.steps
+        ],
+        "reactions": {
+            r.joint: {
+                "kind": r.kind.value,
+                "parent": r.parent,
+                "child": r.child,
+                "unknowns": {str(u): value(num(v)) for u, v in zip(r.unknowns, r.values, strict=True)},
+                "force": pair(r.force),
+                "moment": value(num(r.moment)),
+                "solved_from": r.solved_from,
+            }
+            for r in planar.reactions
+        },
     }
 
 
