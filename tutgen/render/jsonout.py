@@ -232,8 +232,7 @@ def _planar(planar: PlanarNewtonEuler, num: Any) -> dict[str, Any]:
                 "coordinate": s.coordinate,
                 "joint": s.joint,
                 "contributions": [
-                    {"body": c.body, "kind": c.kind, "via": c.via, "value": value(num(c.expr))}
-                    for c in s.contributions
+                    {"body": c.body, "kind": c.kind, "via": c.via, "value": value(num(c.expr))} for c in s.contributions
                 ],
                 "eliminated": [str(u) for u in s.eliminated],
                 "equation": value(num(s.equation)),
