@@ -61,3 +61,39 @@ def test_ordered_printing_keeps_the_value() -> None:
         terms = equation_terms(eq + force, system)
         assert terms is not None
         assert sp.expand(sum(sign * body for sign, body in terms) - (eq + force)) == 0
+
+
+P08 = SPECS / "tutorial-1" / "p08-spatial-rr.yaml"
+
+
+def test_p08_inertia_entry_is_the_tutorials_perfect_square() -> None:
+    """Tutorial p08: H_11 = m_1 l_1² + m_2 (l_1 + l_2 cos θ_2)², not its three expanded terms; the value kept."""
+    system, d, _ = solved(str(P08))
+    tex = TexPrinter(system)
+    assert tex(d.mass_matrix[0, 0]) == r"m_1 l_1^{2} + m_2 \left(l_1 + l_2 \cos\theta_2\right)^{2}"
+    # with rates in it the sum is not squared up: an energy keeps its rates' order
+    t2d = next(c.qd for c in system.coordinates if str(c.q) == "theta2")
+    assert r"\right)^{2}" not in tex(sp.expand(d.mass_matrix[0, 0] * t2d))
+
+
+def test_a_sum_that_is_no_square_is_printed_as_before() -> None:
+    """The square form is taken only when a mass's coefficient factors to a square of the coordinates'
+    functions: (m_1 + m_2) a² + 2 m_2 a b cos q stays arranged."""
+    system, _, _ = solved(str(P05))
+    tex = TexPrinter(system)
+    names = {str(s): s for s in _symbols(system)}
+    m2, a1, a2, t2 = (names[n] for n in ("m2", "a1", "a2", "theta2"))
+    printed = tex(m2 * (a1**2 + a2**2 + 2 * a1 * a2 * sp.cos(t2)))
+    assert r"\right)^{2}" not in printed
+
+
+def _symbols(system) -> set[sp.Symbol]:
+    return {p.symbol for p in system.parameters} | {c.q for c in system.coordinates}
+
+
+def test_c_prime_entries_take_their_common_factor_out() -> None:
+    """p05's C'_12 = -m_2 a_1 a_2 sin θ_2 (θ̇_1 + θ̇_2), the bracket of rates after the sine."""
+    view = solution_view(solved(str(P05))[1])
+    section = next(s for s in view["sections"] if s["title"] == "Matrix form")
+    shown = " ".join(b.get("tex", "") for b in section["blocks"])
+    assert r"- m_2 a_1 a_2 \sin\theta_2\, \left(\dot{\theta}_1 + \dot{\theta}_2\right)" in shown

@@ -250,6 +250,23 @@ class ArmTable:
         return sp.ImmutableMatrix(rows)
 
 
+class ChristoffelConvention(StrEnum):
+    """Which Christoffel symbols a worked solution prints (the spec's ``conventions: {christoffel: …}``)."""
+
+    BOTH = "both"
+    #: the tutorial's (Asada and Slotine's) h_ijk = dH_ij/dq_k - 1/2 dH_jk/dq_i, not symmetric in j, k
+    ASADA_SLOTINE = "asada_slotine"
+    #: the symmetric symbols of the first kind c_ijk = 1/2 (dH_ij/dq_k + dH_ik/dq_j - dH_jk/dq_i)
+    FIRST_KIND = "first_kind"
+
+
+@dataclass(frozen=True)
+class Conventions:
+    """The notational choices of a worked solution (the spec's ``conventions:``)."""
+
+    christoffel: ChristoffelConvention = ChristoffelConvention.BOTH
+
+
 @dataclass(frozen=True)
 class Given:
     """What a question states besides its statement and data (the spec's ``given:``)."""
@@ -287,6 +304,7 @@ class System:
     arm: ArmTable | None = None  # the spec's `arm:` table as written (its links are in bodies and joints)
     question_title: str | None = None  # the question sheet's title, when it differs from ``title``
     given: Given = field(default_factory=Given)
+    conventions: Conventions = field(default_factory=Conventions)
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

@@ -71,6 +71,8 @@ def factor_role(factor: sp.Basic, roles: dict[sp.Basic, Role]) -> Role:
         return Role.TRIG
     if isinstance(factor, sp.Add):
         inner = [roles.get(s, Role.DATA) for s in factor.free_symbols]
+        if inner and min(inner) >= Role.RATE:  # a bracket of rates goes with the rates: sin θ (θ̇₁ + θ̇₂)
+            return Role.RATE
         return min(inner) if inner and max(inner) < Role.COORDINATE else Role.BRACKET
     return roles.get(factor, Role.DATA)
 
@@ -241,10 +243,65 @@ def arranged(expr: sp.Expr, levels: _Levels) -> sp.Expr:
     an arranged form that has a quarter more operations than the model's (``m_2 (l_1 + l_2 \\cos q)^2`` expanded)
     is not used."""
     found = arranged_terms(expr, levels)
+    result = _plus(found) if found else expr
+    if found and sp.count_ops(result) > 1.25 * sp.count_ops(expr) + 2:
+        result = expr
+    squares = _perfect_squares(expr, levels)
+    if squares is not None and sp.count_ops(squares) < sp.count_ops(result):
+        return squares
+    return result
+
+
+def _perfect_squares(expr: sp.Expr, levels: _Levels) -> sp.Expr | None:
+    """A configuration-dependent sum with a mass's coefficient a perfect square, printed as the square
+    (p08's ``m_1 l_1^2 + m_2 (l_1 + l_2 \\cos\\theta_2)^2``, not its three expanded terms): the terms
+    gathered over their masses, in the masses' order, each mass's coefficient factored; ``None`` when
+    no coefficient is a square of a sum of the coordinates' functions, the expression has rates (an
+    energy or an equation of motion keeps the order of its rates), or the form would change the value."""
+    free = expr.free_symbols
+    if free & {*levels.rates, *levels.accelerations} or not free & set(levels.coordinates):
+        return None
+    expanded = sp.expand(expr)
+    if not isinstance(expanded, sp.Add):
+        return None
+    groups: dict[sp.Expr, list[sp.Expr]] = {}
+    for t in sp.Add.make_args(expanded):
+        mass = sp.Mul(*(f for f in sp.Mul.make_args(t) if factor_role(f, levels.roles) is Role.MASS))
+        groups.setdefault(mass, []).append(t / mass)
+    terms: list[Term] = []
+    found = False
+    for mass in sorted(groups, key=lambda m: (m == 1, sp.default_sort_key(m))):
+        coefficient = sp.Add(*groups[mass])
+        try:
+            factored = sp.factor(coefficient)
+        except (sp.PolynomialError, NotImplementedError):
+            factored = coefficient
+        sign, body = positive_lead(factored)
+        square = next(
+            (
+                f
+                for f in sp.Mul.make_args(body)
+                if isinstance(f, sp.Pow)
+                and f.exp == 2
+                and isinstance(f.base, sp.Add)
+                and f.base.free_symbols & set(levels.coordinates)
+            ),
+            None,
+        )
+        if mass != 1 and square is not None:
+            found = True
+            rest = body / square
+            _, base = positive_lead(square.base)  # (-a - b)^2 = (a + b)^2
+            inner = arranged(base, levels) if isinstance(base, sp.Add) else base
+            terms.append((sign, _times(mass * rest, sp.Pow(inner, 2, evaluate=False))))
+        else:
+            terms += _arrange([mass * c for c in sp.Add.make_args(sp.expand(coefficient))], 0, levels)
     if not found:
-        return expr
-    result = _plus(found)
-    return result if sp.count_ops(result) <= 1.25 * sp.count_ops(expr) + 2 else expr
+        return None
+    result = _plus(terms)
+    if sp.expand(result - expr) != 0:  # the printed form keeps the value
+        return None
+    return result
 
 
 def equation_terms(expr: sp.Expr, system: System) -> list[Term] | None:

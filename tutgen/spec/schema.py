@@ -644,6 +644,17 @@ class GivenSpec(SpecModel):
     )
 
 
+class ConventionsSpec(SpecModel):
+    """The notational choices of the worked solution."""
+
+    christoffel: Literal["both", "asada_slotine", "first_kind"] = Field(
+        "both",
+        description="Which Christoffel symbols are printed: the tutorial's (Asada and Slotine's) h_ijk = "
+        "dH_ij/dq_k - 1/2 dH_jk/dq_i ('asada_slotine'), the symmetric symbols of the first kind c_ijk "
+        "('first_kind'), or both (the default). The JSON output always has both.",
+    )
+
+
 class SpecDoc(SpecModel):
     """A tutgen spec: one mechanics problem."""
 
@@ -658,6 +669,9 @@ class SpecDoc(SpecModel):
         None,
         description="The title on a tutorial's question sheet, when the solution's `title` would give the answer "
         "away (default: `title`); may hold maths between dollars.",
+    )
+    conventions: ConventionsSpec | None = Field(
+        None, description="Notational choices of the worked solution (which Christoffel symbols)."
     )
     given: GivenSpec | None = Field(
         None, description="What the question states: `{coordinates: false}` leaves the coordinates to the student."

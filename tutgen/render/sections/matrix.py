@@ -9,7 +9,7 @@ import sympy as sp
 
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.steps import Step, StepKind
-from tutgen.model.system import System
+from tutgen.model.system import ChristoffelConvention, System
 from tutgen.render import blocks as budgets  # PRINT_BUDGET, PROGRAM_BUDGET read when a section is built
 from tutgen.render.blocks import (
     Block,
@@ -158,8 +158,18 @@ def coriolis_matrix_blocks(c: SolutionContext) -> list[Block]:
                 "and $\\dot H - 2C'$ is skew-symmetric:"
             )
         ),
-        display(f"C' = {tex(num(d.coriolis_matrix))},\\quad C = C' {tex(qd)}"),
+        display(f"C' = {tex(num(d.coriolis_matrix).applyfunc(_common_factor))},\\quad C = C' {tex(qd)}"),
     ]
+
+
+def _common_factor(entry: sp.Expr) -> sp.Expr:
+    """An entry of C' with what its terms share taken out, when that is shorter (``-S(θ̇₁ + θ̇₂)`` rather
+    than ``-S θ̇₁ - S θ̇₂``): the same value, printed as a teacher factors it."""
+    factored = sp.factor_terms(entry)
+    shared = [f for f in sp.Mul.make_args(factored) if not f.is_number and not isinstance(f, sp.Add)]
+    if not shared:  # only a sign or a number would come out: -[a + b] reads worse than -a - b
+        return entry
+    return factored if sp.count_ops(factored) < sp.count_ops(entry) else entry
 
 
 def determinant_blocks(c: SolutionContext) -> list[Block]:
@@ -207,13 +217,10 @@ def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
     d, tex, num = c.d, c.tex, c.num
     if not d.has_step(StepKind.CHRISTOFFEL) or not d.christoffel:  # asked first: a large arm's convert on reading
         return None
-    sec = section(
-        "Christoffel symbols",
-        "In the tutorial's convention $h_{ijk} = \\partial H_{ij}/\\partial q_k - \\tfrac12 "
-        "\\partial H_{jk}/\\partial q_i$, with $C_i = \\sum_{j,k} h_{ijk}\\dot q_j \\dot q_k$; "
-        "the symmetric symbols of the first kind are $c_{ijk} = \\tfrac12(\\partial_k H_{ij} + "
-        "\\partial_j H_{ik} - \\partial_i H_{jk})$, with the same sum.",
-    )
+    convention = d.system.conventions.christoffel
+    show_h = convention is not ChristoffelConvention.FIRST_KIND
+    show_c = convention is not ChristoffelConvention.ASADA_SLOTINE
+    sec = section("Christoffel symbols", _christoffel_intro(show_h, show_c))
     blocks = sec["blocks"]
     size = ops(d.christoffel)  # a large arm's table (tutgen.engine.lazytable) is sized without converting it
     nonzero = [] if size > budgets.PRINT_BUDGET else [(k, v) for k, v in sorted(d.christoffel.items()) if v != 0]
@@ -264,32 +271,58 @@ def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
             line += f" = {_partial(i, j, k, d)} - \\tfrac12 {_partial(j, k, i, d)}"
         if first != 0 and second != 0:  # both terms: their values, before the sum
             line += f" = {tex(num(first))} - \\tfrac12\\left({tex(num(second))}\\right)"
+        elif second != 0:  # the half-derivative alone: its value, so the sign and the half are seen
+            line += f" = -\\tfrac12\\left({tex(num(second))}\\right)"
         lines.append(f"{line} = {tex(num(v))}")
     from_definition = " from its definition" if defined else ""
-    blocks.append(para(prose(f"Each nonzero $h_{{ijk}}${from_definition} (all other $h_{{ijk}}$ are zero):")))
-    blocks.append(stacked(lines))
+    if show_h:
+        blocks.append(para(prose(f"Each nonzero $h_{{ijk}}${from_definition} (all other $h_{{ijk}}$ are zero):")))
+        blocks.append(stacked(lines))
     first_kind = [(k, v) for k, v in sorted(d.christoffel_first_kind.items()) if v != 0]
-    blocks.append(para(prose(f"Each nonzero $c_{{ijk}}${from_definition} ($c_{{ikj}} = c_{{ijk}}$):")))
-    blocks.append(
-        stacked(
-            [
-                f"c_{{{i + 1}{j + 1}{k + 1}}} = "
-                + (
-                    f"\\tfrac12\\left({_partial(i, j, k, d)} + {_partial(i, k, j, d)} - "
-                    f"{_partial(j, k, i, d)}\\right) = "
-                    if defined
-                    else ""
-                )
-                + tex(num(v))
-                for (i, j, k), v in first_kind
-                if j <= k
-            ]
+    if show_c:
+        blocks.append(para(prose(f"Each nonzero $c_{{ijk}}${from_definition} ($c_{{ikj}} = c_{{ijk}}$):")))
+        blocks.append(
+            stacked(
+                [
+                    f"c_{{{i + 1}{j + 1}{k + 1}}} = "
+                    + (
+                        f"\\tfrac12\\left({_partial(i, j, k, d)} + {_partial(i, k, j, d)} - "
+                        f"{_partial(j, k, i, d)}\\right) = "
+                        if defined
+                        else ""
+                    )
+                    + tex(num(v))
+                    for (i, j, k), v in first_kind
+                    if j <= k
+                ]
+            )
         )
-    )
     if d.coriolis_vector is not None:
-        blocks.append(para(prose("Contracted with the rates, $C_i = \\sum_{j,k} h_{ijk}\\dot q_j\\dot q_k$:")))
+        symbol = "h_{ijk}" if show_h else "c_{ijk}"
+        blocks.append(para(prose(f"Contracted with the rates, $C_i = \\sum_{{j,k}} {symbol}\\dot q_j\\dot q_k$:")))
         blocks.append(display(f"C = {tex(num(d.coriolis_vector))}"))
     return sec
+
+
+def _christoffel_intro(show_h: bool, show_c: bool) -> str:
+    """The section's opening sentence: the definition of each convention printed (the spec's
+    ``conventions: {christoffel: …}``), and the sum that gives C from it."""
+    h = "$h_{ijk} = \\partial H_{ij}/\\partial q_k - \\tfrac12 \\partial H_{jk}/\\partial q_i$"
+    c = "$c_{ijk} = \\tfrac12(\\partial_k H_{ij} + \\partial_j H_{ik} - \\partial_i H_{jk})$"
+    if show_h and show_c:
+        return (
+            f"In the tutorial's convention {h}, with $C_i = \\sum_{{j,k}} h_{{ijk}}\\dot q_j \\dot q_k$; "
+            f"the symmetric symbols of the first kind are {c}, with the same sum."
+        )
+    if show_h:
+        return (
+            f"In the tutorial's convention (Asada and Slotine) {h}, with "
+            "$C_i = \\sum_{j,k} h_{ijk}\\dot q_j \\dot q_k$; they are not symmetric in $j, k$."
+        )
+    return (
+        f"The symbols of the first kind, symmetric in $j, k$: {c}, with "
+        "$C_i = \\sum_{j,k} c_{ijk}\\dot q_j \\dot q_k$."
+    )
 
 
 def entry_by_entry(d: Derivation, tex: TexPrinter, numeric: Any, with_c_g: bool) -> list[Block]:

@@ -18,6 +18,7 @@ from tutgen.spec.builders.arm import build_arm
 from tutgen.spec.builders.ask import build_ask
 from tutgen.spec.builders.bodies import build_bodies, declared_bodies
 from tutgen.spec.builders.context import Context
+from tutgen.spec.builders.conventions import build_conventions
 from tutgen.spec.builders.coordinates import build_coordinates, coordinates_with_dimensions
 from tutgen.spec.builders.elements import build_elements
 from tutgen.spec.builders.energy import build_energy
@@ -68,6 +69,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
     texts = build_texts(ctx)  # last: their maths may use every declared name
     ask = build_ask(ctx, bool(ctx.coords))
     methods = build_methods(ctx, ask)  # after `ask`: Newton-Euler needs equations of motion asked for
+    conventions = build_conventions(ctx, ask)  # after `ask`: a convention for symbols not asked for is an error
     if ctx.errors:
         raise SpecErrors(ctx.errors)
 
@@ -102,5 +104,6 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
         marking=marking,
         question_title=question_title,
         given=given,
+        conventions=conventions,
     )
     return with_texts(system, texts)
