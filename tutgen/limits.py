@@ -17,7 +17,7 @@ from __future__ import annotations
 import signal
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any
 
@@ -25,6 +25,7 @@ from tutgen.errors import DerivationTimeout
 
 __all__ = [
     "DEFAULT_TIMEOUT",
+    "alarm",
     "checkpoint",
     "current_step",
     "deadline",
@@ -109,22 +110,30 @@ def current_step() -> str:
     return str(_state["step"])
 
 
-@contextmanager
-def deadline(seconds: float | None) -> Iterator[None]:
-    """Raise :class:`~tutgen.errors.DerivationTimeout` if the block runs longer than ``seconds``.
-
-    A no-op for ``None`` or ``0``, off the main thread, where ``SIGALRM`` does not exist, and inside
-    another active deadline (the outer one stays in charge). The timer and the previous handler are
-    restored on the way out, however the block ends.
-    """
-    usable = (
+def usable(seconds: float | None, armed: dict[str, Any]) -> bool:
+    """Whether :func:`alarm` can arm: a positive limit, ``SIGALRM``, the main thread, none armed yet."""
+    return bool(
         seconds
         and seconds > 0
         and hasattr(signal, "setitimer")
         and threading.current_thread() is threading.main_thread()
-        and not _state["armed"]
+        and not armed["armed"]
     )
-    if not usable:
+
+
+@contextmanager
+def alarm(
+    seconds: float | None, expired: Callable[[], BaseException], again: float, armed: dict[str, Any]
+) -> Iterator[None]:
+    """The one-shot ``SIGALRM`` under both time limits (:func:`deadline` here, the answer deadline of
+    tutgen.check.limits): raise ``expired()`` if the block runs longer than ``seconds``, and then again
+    every ``again`` seconds until the block is left (sympy has a few ``except Exception`` blocks).
+
+    A no-op for ``None`` or ``0``, off the main thread, where ``SIGALRM`` does not exist, and while
+    ``armed["armed"]`` says one of its kind is already running (the outer one stays in charge). While a
+    :func:`shielded` cleanup runs the alarm waits for it. The timer and the previous handler are
+    restored however the block ends."""
+    if not usable(seconds, armed):
         yield
         return
     assert seconds is not None
@@ -133,23 +142,41 @@ def deadline(seconds: float | None) -> Iterator[None]:
         if _state.get("shield"):  # a cleanup that must not be cut short: come back when it is done
             signal.setitimer(signal.ITIMER_REAL, 0.05)
             return
-        # sympy has a few ``except Exception`` blocks: keep firing until the block is really left
-        _state["expired"] = seconds
-        signal.setitimer(signal.ITIMER_REAL, 0.25)
-        raise DerivationTimeout(seconds, current_step(), _state["stage"])
+        signal.setitimer(signal.ITIMER_REAL, again)
+        raise expired()
 
     previous = signal.signal(signal.SIGALRM, expire)
-    _state["armed"] = True
-    _state["step"] = "start"
-    _state["stage"] = "derivation"
-    _state["ends"] = time.monotonic() + float(seconds)
-    _state["seconds"] = seconds
+    armed["armed"] = True
     signal.setitimer(signal.ITIMER_REAL, float(seconds))
     try:
         yield
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)
-        _state["armed"] = False
+        armed["armed"] = False
+
+
+@contextmanager
+def deadline(seconds: float | None) -> Iterator[None]:
+    """Raise :class:`~tutgen.errors.DerivationTimeout` if the block runs longer than ``seconds``, naming
+    the step and stage reached (:func:`alarm`: a no-op without a limit, off the main thread, and inside
+    another active deadline)."""
+    if not usable(seconds, _state):
+        yield
+        return
+
+    def expired() -> BaseException:
+        _state["expired"] = seconds
+        return DerivationTimeout(seconds, current_step(), _state["stage"])
+
+    assert seconds is not None
+    _state["step"] = "start"
+    _state["stage"] = "derivation"
+    _state["ends"] = time.monotonic() + float(seconds)
+    _state["seconds"] = seconds
+    try:
+        with alarm(seconds, expired, 0.25, _state):
+            yield
+    finally:
         _state["expired"] = None
         _state["ends"] = None

@@ -16,10 +16,10 @@ The spec's derivation is bounded as for ``tutgen solve`` (:func:`tutgen.engine.p
 from __future__ import annotations
 
 import resource
-import signal
-import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
+
+from tutgen.limits import alarm
 
 __all__ = ["MEMORY_HEADROOM", "AnswerTimeLimit", "answer_deadline", "cap_memory"]
 
@@ -45,33 +45,11 @@ def answer_deadline(seconds: float | None) -> Iterator[None]:
 
     A no-op for None or 0, off the main thread and inside another active answer deadline. Once
     expired, the alarm fires again every 0.1 s until the block is left, in case a first raise was
-    swallowed. The previous handler and timer are restored however the block ends.
+    swallowed. The previous handler and timer are restored however the block ends
+    (:func:`tutgen.limits.alarm`).
     """
-    usable = (
-        seconds
-        and seconds > 0
-        and hasattr(signal, "setitimer")
-        and threading.current_thread() is threading.main_thread()
-        and not _state["armed"]
-    )
-    if not usable:
+    with alarm(seconds, lambda: AnswerTimeLimit(seconds or 0), 0.1, _state):
         yield
-        return
-    assert seconds is not None
-
-    def expire(signum: int, frame: object) -> None:
-        signal.setitimer(signal.ITIMER_REAL, 0.1)
-        raise AnswerTimeLimit(seconds)
-
-    previous = signal.signal(signal.SIGALRM, expire)
-    _state["armed"] = True
-    signal.setitimer(signal.ITIMER_REAL, float(seconds))
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
-        _state["armed"] = False
 
 
 def _address_space() -> int:
