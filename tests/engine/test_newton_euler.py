@@ -368,7 +368,8 @@ def test_newton_euler_json_contract() -> None:
     system, _, doc = solved(str(P03))
     out = doc["results"]["newton_euler"]
     # the keys of the contract, in order (`planar`, additive: p03 presents Newton–Euler, docs/json-output.md)
-    assert list(out) == ["method", "equations_of_motion", "reaction_forces", "agrees_with_lagrange", "remarks", "planar"]
+    keys = ["method", "equations_of_motion", "reaction_forces", "agrees_with_lagrange", "remarks", "planar"]
+    assert list(out) == keys
     assert out["method"] == "recursive"
     assert list(out["reaction_forces"]) == ["slider", "pivot"]
     assert all(isinstance(v, str) for v in out["equations_of_motion"])
