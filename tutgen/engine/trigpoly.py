@@ -306,6 +306,14 @@ class TrigPoly:
         """Number of (frequency, monomial) terms: the work a product costs."""
         return sum(len(c) for c in self.terms.values())
 
+    def min_ops(self) -> int:
+        """A lower bound of ``sympy.count_ops(self.to_expr())``, without converting (issue 17): the s terms
+        are a sum of at least s - 1 additions (grouping pulls out factors but never merges two terms), and
+        each frequency k other than 0 is a cos or sin (one operation) of an argument with one term per
+        nonzero k_j (one addition fewer). count_ops counts a repeated subexpression each time it occurs."""
+        trig = sum(sum(1 for v in key[0] if v) for key in self.terms if key[0] != self.algebra.zero_k)
+        return max(self.size() - 1, 0) + trig
+
     def to_expr(self, outer: Sequence[sp.Symbol] = ()) -> sp.Expr:
         """The sympy expression: one grouped coefficient per cos/sin, the constant term first.
 
