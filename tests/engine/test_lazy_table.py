@@ -108,3 +108,15 @@ def test_trig_poly_bound_is_below_count_ops():
     assert polys
     for p in polys:
         assert p.min_ops() <= sp.count_ops(p.to_expr())
+
+
+def test_lazy_matrix_is_sized_without_converting():
+    from tutgen.engine.pipeline import derive
+
+    system, _, _ = solved(str(SPECS / "arms" / "scara.yaml"))
+    c = derive(system).coriolis_vector
+    bound = c.min_ops()
+    assert count_ops_upto([c], bound - 1) == bound  # over the limit, decided by the bound alone
+    assert not c.is_converted
+    exact = int(sum(sp.count_ops(e) for e in c))
+    assert count_ops_upto([c], exact) == exact  # within it: the exact count of the converted entries
