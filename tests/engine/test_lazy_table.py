@@ -9,7 +9,7 @@ import pickle
 import sympy as sp
 
 from tests.conftest import SPECS, solved
-from tutgen.engine.lazytable import LazyTable
+from tutgen.engine.lazytable import LazyMatrix, LazyTable
 from tutgen.engine.serial import serial_dynamics
 from tutgen.render.size import count_ops_upto, nonzero_count
 
@@ -42,3 +42,81 @@ def test_lazy_table_pickles_as_a_plain_dict():
     _, d, _ = solved(str(SPECS / "arms" / "scara.yaml"))
     back = pickle.loads(pickle.dumps(d.christoffel))
     assert type(back) is dict and back == dict(d.christoffel)
+
+
+# ---------------------------------------------------------------------------------------------
+# C q_dot, C and the equations of motion of a large arm (LazyMatrix)
+# ---------------------------------------------------------------------------------------------
+
+
+def test_lazy_matrix_reads_as_the_plain_matrix():
+    x, y = sp.symbols("x y")
+    calls: list[int] = []
+
+    def entries() -> list[sp.Expr]:
+        calls.append(1)
+        return [x + y, x * y, sp.sin(x), sp.Integer(0)]
+
+    m = LazyMatrix(2, 2, entries, lambda: 1)
+    assert m.shape == (2, 2) and not m.is_converted and m.min_ops() == 1 and not calls
+    plain = sp.ImmutableMatrix([[x + y, x * y], [sp.sin(x), 0]])
+    assert m == plain and plain == m and hash(m) == hash(plain) and m.is_converted
+    assert type(m.T) is sp.ImmutableMatrix and m.T == plain.T
+    assert m.subs(x, 1) == plain.subs(x, 1) and type(m.subs(x, 1)) is sp.ImmutableMatrix
+    assert m.applyfunc(lambda e: 2 * e) == 2 * plain and m * m == plain * plain and list(m) == list(plain)
+    assert m.free_symbols == {x, y} and sp.ImmutableMatrix(m) == plain
+    mixed = m * sp.Matrix([1, 2])  # sympy builds a mixed product with its operand's class
+    assert type(mixed) is sp.ImmutableMatrix and mixed == plain * sp.Matrix([1, 2])
+    back = pickle.loads(pickle.dumps(m))
+    assert type(back) is sp.ImmutableMatrix and back == plain
+    assert len(calls) == 1  # converted once
+
+
+def test_large_arm_matrices_equal_the_eager_ones_and_bound_their_size():
+    """The derivation's C q_dot, C and equations of motion (converted when first read) equal a fresh
+    serial_dynamics' symbols contracted by hand, and their lower bounds (read before converting) are at
+    most sympy's count_ops of the converted entries."""
+    for spec in ("scara.yaml", "planar-4r.yaml"):
+        system, _, _ = solved(str(SPECS / "arms" / spec))
+        from tutgen.engine.pipeline import derive
+
+        d = derive(system)  # a fresh derivation: nothing converted yet
+        mats = (d.coriolis_vector, d.coriolis_matrix, d.equations_of_motion)
+        assert all(isinstance(m, LazyMatrix) and not m.is_converted for m in mats)
+        bounds = [m.min_ops() for m in mats]
+        assert not any(m.is_converted for m in mats)
+        dyn = serial_dynamics(system)
+        n = len(system.coordinates)
+        qd = [c.qd for c in system.coordinates]
+        qdd = [c.qdd for c in system.coordinates]
+        first = dyn.christoffel_first_kind
+        c_hand = [sum(first.get((i, j, k), 0) * qd[j] * qd[k] for j in range(n) for k in range(n)) for i in range(n)]
+        for i in range(n):
+            assert sp.expand(d.coriolis_vector[i] - c_hand[i]) == 0, (spec, i)
+            row = sum(d.mass_matrix[i, j] * qdd[j] for j in range(n)) + c_hand[i] + d.gravity_vector[i]
+            assert sp.expand(d.equations_of_motion[i] - row + d.generalized_forces[i]) == 0, (spec, i)
+        assert sp.expand(d.coriolis_matrix * sp.Matrix(qd) - d.coriolis_vector) == sp.zeros(n, 1)
+        for bound, m in zip(bounds, mats, strict=True):
+            assert 0 < bound <= sum(sp.count_ops(e) for e in m), spec
+
+
+def test_trig_poly_bound_is_below_count_ops():
+    system, _, _ = solved(str(SPECS / "arms" / "planar-4r.yaml"))
+    dyn = serial_dynamics(system)
+    polys = [*dyn.exact.gammas.values(), *dyn.christoffel_polys.values(), *dyn.exact.g]
+    polys += [p for row in dyn.exact.h for p in row]
+    assert polys
+    for p in polys:
+        assert p.min_ops() <= sp.count_ops(p.to_expr())
+
+
+def test_lazy_matrix_is_sized_without_converting():
+    from tutgen.engine.pipeline import derive
+
+    system, _, _ = solved(str(SPECS / "arms" / "scara.yaml"))
+    c = derive(system).coriolis_vector
+    bound = c.min_ops()
+    assert count_ops_upto([c], bound - 1) == bound  # over the limit, decided by the bound alone
+    assert not c.is_converted
+    exact = int(sum(sp.count_ops(e) for e in c))
+    assert count_ops_upto([c], exact) == exact  # within it: the exact count of the converted entries

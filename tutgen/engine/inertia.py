@@ -7,6 +7,7 @@ The parallel-axis theorem in tensor form: J_O = J_G + m (|d|^2 E - d d^T), with 
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import mpmath
@@ -307,8 +308,12 @@ def part_inertia(part: Part) -> PartInertia:
     )
 
 
+@functools.lru_cache(maxsize=1024)
 def body_inertia(body: Body) -> BodyInertia:
-    """Sum the parts about the body frame's origin, then shift to the centre of mass."""
+    """Sum the parts about the body frame's origin, then shift to the centre of mass.
+
+    Cached (bodies are frozen values): the serial route and its numeric checks ask for the same body's
+    inertia up to eight times, a third of a second each on the symbolic PUMA's six links (issue 17)."""
     parts = tuple(part_inertia(p) for p in body.parts)
     mass = sp.expand(sum((p.mass for p in parts), sp.Integer(0)))
     first_moment = sp.ImmutableMatrix(sum((p.mass * sp.Matrix(p.centroid) for p in parts), sp.zeros(3, 1)))

@@ -25,6 +25,7 @@ Every stage records itself with :func:`~tutgen.limits.checkpoint`, so a timeout 
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 
 import sympy as sp
 
@@ -34,7 +35,7 @@ from tutgen.engine.forces import generalized_forces, rotors, spring_energies
 from tutgen.engine.inertia import BodyInertia, BodyPrincipal, body_inertia, body_principal
 from tutgen.engine.kinematics import Kinematics
 from tutgen.engine.lagrange import energies, lagrange_equations
-from tutgen.engine.lazytable import LazyTable
+from tutgen.engine.lazytable import LazyMatrix, LazyTable
 from tutgen.engine.matrix_form import christoffel_symbols, coriolis_terms, equations_of_motion, gravity_vector
 from tutgen.engine.newton_euler import derive_newton_euler
 from tutgen.engine.potential import potential_sources
@@ -272,9 +273,14 @@ def _serial_route(
     )
     q_vec = sp.ImmutableMatrix(forces)
     c_vec = dyn.coriolis_vector
-    eom = sp.ImmutableMatrix(
-        [sp.Add(*[h[i, j] * qdd[j] for j in range(n)], c_vec[i], g_vec[i], -q_vec[i]) for i in range(n)]
-    )
+
+    def equations(c: Sequence[sp.Expr]) -> list[sp.Expr]:
+        return [sp.Add(*[h[i, j] * qdd[j] for j in range(n)], c[i], g_vec[i], -q_vec[i]) for i in range(n)]
+
+    # C q_dot, C and so the equations are converted when first read (the JSON, an answer check): a worked
+    # solution of a large arm only sizes them (issue 17); see tutgen/engine/lazytable.py
+    eom = LazyMatrix(n, 1, lambda: equations(list(c_vec)), dyn.coriolis_min_ops)
+    c_mat = LazyMatrix(n, n, lambda: list(dyn.coriolis_matrix), lambda: dyn.coriolis_min_ops(matrix=True))
 
     # the Christoffel symbols are converted when first read (the JSON, an answer check): a worked
     # solution of a large arm does not print them (issue 17)
@@ -296,7 +302,7 @@ def _serial_route(
         generalized_forces=q_vec,
         mass_matrix=h,
         coriolis_vector=c_vec,
-        coriolis_matrix=dyn.coriolis_matrix,
+        coriolis_matrix=c_mat,
         gravity_vector=g_vec,
         equations_of_motion=eom,
         christoffel=LazyTable(n, lambda: dyn.christoffel, lambda: dyn.christoffel_polys),
@@ -311,8 +317,11 @@ def _serial_route(
     )
     # the dimensional check of checks.py is cheap; its eigenvalue check lambdifies H (seconds at 6 DOF),
     # so the numeric one of serial_checks replaces it
+    # (on the equations with each C_i's terms by their monomials, serial.py's coriolis_dimension_terms:
+    # the same dimensions without converting C)
     checkpoint("checks: dimensions")
-    dims = dimension_checks(system, derivation)
+    sized = sp.ImmutableMatrix(equations(dyn.coriolis_dimension_terms()))
+    dims = dimension_checks(system, dataclasses.replace(derivation, equations_of_motion=sized))
     for check in dims:
         if not check.passed:
             raise DerivationError(

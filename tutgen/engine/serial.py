@@ -17,7 +17,8 @@ fixed joints from the ground (each placed by :func:`tutgen.engine.placement.plac
   the Christoffel symbols Gamma_ijk = (dH_ij/dq_k + dH_ik/dq_j - dH_jk/dq_i) / 2 are cheap.
 - sympy is only the output layer: each entry is converted once, its coefficients grouped by a
   greedy Horner scheme (``TrigAlgebra.coefficient_expr``) and assembled without sympy's flatten.
-  The symbols Gamma_ijk (j <= k) are converted once and C q_dot and C are written from them.
+  The symbols Gamma_ijk (j <= k) are converted once, when C q_dot or C is first read, and C q_dot and C
+  are written from them.
 
 The tutorial's table h_ijk is converted on first use (``functools.cached_property``): a 6-DOF arm
 has about two hundred of them, and H, C q_dot, G are what a simulation needs.
@@ -42,6 +43,7 @@ import sympy as sp
 
 from tutgen.engine.derivation import Check
 from tutgen.engine.inertia import body_inertia
+from tutgen.engine.lazytable import LazyMatrix
 from tutgen.engine.placement import place_joint
 from tutgen.engine.trigpoly import TrigAlgebra, TrigPoly, monomial_times_sum
 from tutgen.errors import DerivationError
@@ -130,8 +132,6 @@ class SerialDynamics:
     coriolis_vector: sp.ImmutableMatrix
     gravity_vector: sp.ImmutableMatrix
     potential_energy: sp.Expr  # of gravity
-    # Gamma_ijk (both orders of j, k: the same object), nonzero only; C q_dot and C are built from it
-    christoffel_first_kind: dict[tuple[int, int, int], sp.Expr]
     timings: tuple[tuple[str, float], ...]
     exact: _Exact = field(repr=False, compare=False)
 
@@ -157,6 +157,62 @@ class SerialDynamics:
         for (i, j, k), gam in self.exact.gammas.items():
             out[(i, j, k)] = out[(i, k, j)] = gam
         return out
+
+    @cached_property
+    def christoffel_first_kind(self) -> dict[tuple[int, int, int], sp.Expr]:
+        """Gamma_ijk (both orders of j, k: the same object), nonzero only, converted to sympy on first read
+        (C q_dot and C are written from them)."""
+        first: dict[tuple[int, int, int], sp.Expr] = {}
+        for (i, j, k), gam in self.exact.gammas.items():
+            first[(i, j, k)] = first[(i, k, j)] = gam.to_expr()
+        return dict(sorted(first.items()))
+
+    def coriolis_entries(self) -> list[sp.Expr]:
+        """C q_dot entry by entry: C_i = sum_j Gamma_ijj q_dot_j^2 + 2 sum_{j<k} Gamma_ijk q_dot_j q_dot_k,
+        the same grouping by rate monomials that TrigPoly.to_expr(rates) gives, without converting C on its
+        own."""
+        first = self.christoffel_first_kind
+        rates = self.rates
+        keys = self.exact.gammas
+        return [
+            monomial_times_sum(
+                [
+                    (first[key], 1 if key[1] == key[2] else 2, (rates[key[1]], rates[key[2]]))
+                    for key in keys
+                    if key[0] == i
+                ]
+            )
+            for i in range(len(self.coordinates))
+        ]
+
+    def coriolis_min_ops(self, matrix: bool = False) -> int:
+        """A lower bound of ``sympy.count_ops`` of C q_dot (or, ``matrix``, of C) without converting: each
+        symbol's own (:meth:`TrigPoly.min_ops <tutgen.engine.trigpoly.TrigPoly.min_ops>`), which C_i keeps
+        whole as a factor of its rate monomial; in C q_dot those products are distinct terms of C_i (one
+        addition fewer than symbols in the row). The bound of C q_dot holds for the equations of motion,
+        which have C q_dot's terms among theirs; in C each symbol occurs at least once, but an entry may
+        have a single term."""
+        per_row = [0] * len(self.coordinates)
+        total = 0
+        for (i, _, _), p in self.exact.gammas.items():
+            per_row[i] += 1
+            total += p.min_ops()
+        return total if matrix else total + sum(max(k - 1, 0) for k in per_row)
+
+    def coriolis_dimension_terms(self) -> list[sp.Expr]:
+        """For the dimensional check without converting C q_dot: per row i, the sum over the symbols
+        Gamma_ijk of q_dot_j q_dot_k (m_1 + m_2 + ...), where m_1, m_2, ... are the distinct monomials of
+        Gamma_ijk's coefficients without their numbers and trigonometric factors. The trigonometric
+        factors are of revolute angles (dimensionless) and numbers have no dimension, so the terms of
+        C_i have the dimensions of these monomials times q_dot_j q_dot_k and nothing else."""
+        alg = self.exact.algebra
+        gens = alg.gens
+        rows: list[list[sp.Expr]] = [[] for _ in self.coordinates]
+        for (i, j, k), gam in self.exact.gammas.items():
+            monomials = sorted({m for c in gam.terms.values() for m in c})
+            inner = sp.Add(*[sp.Mul(*[gens[g] ** e for g, e in enumerate(m) if e]) for m in monomials])
+            rows[i].append(self.rates[j] * self.rates[k] * inner)
+        return [sp.Add(*r) for r in rows]
 
     @cached_property
     def christoffel(self) -> dict[tuple[int, int, int], sp.Expr]:
@@ -425,24 +481,6 @@ def serial_dynamics(system: System) -> SerialDynamics:
 
     mass_matrix = sp.ImmutableMatrix(n, n, lambda i, j: h[min(i, j)][max(i, j)].to_expr())
     mass_matrix = sp.ImmutableMatrix(n, n, _mirror(mass_matrix, n))
-    first: dict[tuple[int, int, int], sp.Expr] = {}
-    for (i, j, k), gam in gammas.items():
-        first[(i, j, k)] = first[(i, k, j)] = gam.to_expr()
-    first = dict(sorted(first.items()))
-    # C_i = sum_j Gamma_ijj q_dot_j^2 + 2 sum_{j<k} Gamma_ijk q_dot_j q_dot_k: the same grouping by rate
-    # monomials that TrigPoly.to_expr(rates) gives, without converting C on its own
-    coriolis = sp.ImmutableMatrix(
-        [
-            monomial_times_sum(
-                [
-                    (first[key], 1 if key[1] == key[2] else 2, (rates[key[1]], rates[key[2]]))
-                    for key in gammas
-                    if key[0] == i
-                ]
-            )
-            for i in range(n)
-        ]
-    )
     gravity_vector = sp.ImmutableMatrix([g.to_expr() for g in g_vec])
     u_expr = u.to_expr()
     t_out = time.perf_counter()
@@ -454,7 +492,12 @@ def serial_dynamics(system: System) -> SerialDynamics:
         ("total", t_out - start),
     )
     exact = _Exact(alg, h, dh, gammas, g_vec, u)
-    return SerialDynamics(tuple(coords), rates, mass_matrix, coriolis, gravity_vector, u_expr, first, timings, exact)
+    # C q_dot is converted when first read (the Christoffel symbols are most of the conversion: 2.6 of the
+    # symbolic PUMA's 3.8 s), so that a worked solution that only sizes it never converts it (issue 17)
+    dyn: SerialDynamics
+    coriolis = LazyMatrix(n, 1, lambda: dyn.coriolis_entries(), lambda: dyn.coriolis_min_ops())
+    dyn = SerialDynamics(tuple(coords), rates, mass_matrix, coriolis, gravity_vector, u_expr, timings, exact)
+    return dyn
 
 
 def _mirror(m: sp.MatrixBase, n: int) -> list[sp.Expr]:

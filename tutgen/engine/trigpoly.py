@@ -159,23 +159,44 @@ class NumericEvaluator:
 
         self.algebra = algebra
         self.count = len(polys)
-        monoms: list[tuple[int, ...]] = []
+        # the monomials are stored once each, sparsely (a 6-DOF arm's ~200 000 terms share a few
+        # thousand monomials of ~70 generators, each with a handful of factors): per distinct monomial
+        # its factors (generator, exponent), flat, and where its run starts
+        unique: dict[tuple[int, ...], int] = {}
+        which: list[int] = []
         coeffs: list[float] = []
-        owner: list[int] = []
+        groups: list[int] = []  # terms per (polynomial, frequency): its owner and frequency repeated
+        owners: list[int] = []
         freqs: list[tuple[int, ...]] = []
         kinds: list[int] = []
         for index, p in enumerate(polys):
             for (k, kind), c in p.terms.items():
-                for m, v in c.items():
-                    monoms.append(m)
-                    coeffs.append(float(v))
-                    owner.append(index)
-                    freqs.append(k)
-                    kinds.append(kind)
-        ngens = algebra.ring.ngens
-        self.exponents = np.array(monoms, dtype=float).reshape(len(monoms), ngens)
+                which += [unique.setdefault(m, len(unique)) for m in c.keys()]
+                coeffs += [float(v) for v in c.values()]
+                groups.append(len(c))
+                owners.append(index)
+                freqs.append(k)
+                kinds.append(kind)
+        factor_gen: list[int] = []
+        factor_exp: list[int] = []
+        starts: list[int] = []
+        for m in unique:
+            starts.append(len(factor_gen))
+            for g, e in enumerate(m):
+                if e:
+                    factor_gen.append(g)
+                    factor_exp.append(e)
+            if len(factor_gen) == starts[-1]:  # the monomial 1: one factor 1 (generator -1 reads 1.0)
+                factor_gen.append(-1)
+                factor_exp.append(1)
+        self.factor_gen = np.array(factor_gen, dtype=int)
+        self.factor_exp = np.array(factor_exp, dtype=float)
+        self.starts = np.array(starts, dtype=int)
+        self.which = np.array(which, dtype=int)
         self.coeffs = np.array(coeffs, dtype=float)
-        self.owner = np.array(owner, dtype=int)
+        counts = np.array(groups, dtype=int)
+        self.owner = np.repeat(np.array(owners, dtype=int), counts)
+        self.group = np.repeat(np.arange(len(groups)), counts)
         self.freqs = np.array(freqs, dtype=float).reshape(len(freqs), algebra.n)
         self.is_sin = np.array(kinds, dtype=bool)
 
@@ -185,13 +206,15 @@ class NumericEvaluator:
 
         alg = self.algebra
         floats = {s: sp.Float(v) for s, v in values.items()}
-        gens = [float(sp.sympify(g).xreplace(floats)) for g in alg.gens] or [1.0]
+        gens = np.array([float(sp.sympify(g).xreplace(floats)) for g in alg.gens] + [1.0])  # [-1] is 1.0
         angles = np.array([float(values[q]) if r else 0.0 for q, r in zip(alg.coordinates, alg.revolute, strict=True)])
         phase = self.freqs @ angles
         trig = np.where(self.is_sin, np.sin(phase), np.cos(phase))
-        monomials = np.prod(np.array(gens) ** self.exponents, axis=1)
         out = np.zeros(self.count)
-        np.add.at(out, self.owner, self.coeffs * monomials * trig)
+        if not len(self.which):
+            return [float(x) for x in out]
+        distinct = np.multiply.reduceat(gens[self.factor_gen] ** self.factor_exp, self.starts)
+        np.add.at(out, self.owner, self.coeffs * distinct[self.which] * trig[self.group])
         return [float(x) for x in out]
 
 
@@ -305,6 +328,14 @@ class TrigPoly:
     def size(self) -> int:
         """Number of (frequency, monomial) terms: the work a product costs."""
         return sum(len(c) for c in self.terms.values())
+
+    def min_ops(self) -> int:
+        """A lower bound of ``sympy.count_ops(self.to_expr())``, without converting (issue 17): the s terms
+        are a sum of at least s - 1 additions (grouping pulls out factors but never merges two terms), and
+        each frequency k other than 0 is a cos or sin (one operation) of an argument with one term per
+        nonzero k_j (one addition fewer). count_ops counts a repeated subexpression each time it occurs."""
+        trig = sum(sum(1 for v in key[0] if v) for key in self.terms if key[0] != self.algebra.zero_k)
+        return max(self.size() - 1, 0) + trig
 
     def to_expr(self, outer: Sequence[sp.Symbol] = ()) -> sp.Expr:
         """The sympy expression: one grouped coefficient per cos/sin, the constant term first.

@@ -23,7 +23,7 @@ from typing import Any
 
 import sympy as sp
 
-from tutgen.engine.lazytable import LazyTable
+from tutgen.engine.lazytable import LazyMatrix, LazyTable
 
 __all__ = ["count_ops_upto", "lower_bound_exceeds", "nonzero_count", "size_text"]
 
@@ -64,7 +64,8 @@ def _product_bound(args: tuple[sp.Basic, ...]) -> int:
 def count_ops_upto(exprs: Iterable[Any], limit: int) -> int:
     """``sympy.count_ops`` of the expressions (and of every entry of a matrix or value of a table)
     together when that is at most ``limit``, else ``limit + 1``: an expression certainly too long is
-    never counted in full, and a large arm's table of Christoffel symbols never converted for it.
+    never counted in full, and a large arm's table of Christoffel symbols, C q_dot, C or equations of motion
+    (:mod:`tutgen.engine.lazytable`) never converted for it.
 
     >>> x, y = sp.symbols("x y")
     >>> count_ops_upto([x * y + sp.sin(x)], 10), count_ops_upto([sp.Add(*sp.symbols("a:20"))], 5)
@@ -78,6 +79,11 @@ def count_ops_upto(exprs: Iterable[Any], limit: int) -> int:
             if bound > limit:
                 return limit + 1
             items += [x for x in e.values() if x != 0]
+        elif isinstance(e, LazyMatrix) and not e.is_converted:  # a large arm's C q_dot, C or equations
+            bound += e.min_ops()
+            if bound > limit:
+                return limit + 1
+            items += [x for x in e if isinstance(x, sp.Basic)]
         elif isinstance(e, Mapping):  # a table of symbols: its values
             items += [x for x in e.values() if isinstance(x, sp.Basic) and x != 0]
         elif isinstance(e, sp.MatrixBase):
