@@ -113,7 +113,7 @@ class BodyDrawing(Canvas):
             if self.only is not None and b.name != self.only:
                 continue
             composite = len(b.parts) > 1
-            for part in b.parts:
+            for part in self.back_to_front(b):
                 at3 = pose.point(b.name, self.num.vec(part.at))
                 at = self.P(at3)
                 name = f"body:{b.name}/{part.name}" if composite else f"body:{b.name}"
@@ -159,6 +159,20 @@ class BodyDrawing(Canvas):
                 # the name inside the outline, where a textbook writes it; it is placed before the labels
                 # drawn later (loads, coordinates), which then keep off it
                 self.label(name, tex, (cx, cy), (0.0, 0.0))
+
+    def back_to_front(self, body: object) -> list[object]:
+        """A body's parts in drawing order: in the oblique view the farthest from the viewer first (by
+        its centre's depth), so that each part's white-filled outline hides what lies behind it, as a
+        line drawing does (p01's cylinder in front of the block's face, the point mass in front of
+        both); spec order among parts at one depth and in the planar view."""
+        parts = list(body.parts)  # type: ignore[attr-defined]
+        if self.view != "oblique" or len(parts) < 2:
+            return parts
+        w = self.toward_viewer()
+        name = body.name  # type: ignore[attr-defined]
+        depth = [float(self.pose.point(name, self.num.vec(part.at)) @ w) for part in parts]
+        order = sorted(range(len(parts)), key=lambda i: (round(depth[i], 9), i))
+        return [parts[i] for i in order]
 
     def toward_viewer(self) -> Vec:
         """The world direction the oblique view looks along, toward the viewer: the projection sends
