@@ -29,7 +29,7 @@ from enum import StrEnum
 import numpy as np
 import sympy as sp
 
-from tutgen.figure.build import SystemBuilder
+from tutgen.figure.build import DRAWN_MAX, SystemBuilder
 from tutgen.figure.canvas import TARGET_SIZE
 from tutgen.figure.geometry import prim_box
 from tutgen.figure.labels import place_labels
@@ -85,9 +85,24 @@ class BodyForce:
 
 def free_body_diagram(system: System, body_name: str, forces: Sequence[BodyForce] | None = None) -> Drawing:
     """The free-body diagram of ``body_name`` with ``forces`` (by default :func:`body_forces`);
-    a :class:`ValueError` naming the bodies there are when there is no such body."""
+    a :class:`ValueError` naming the bodies there are when there is no such body. Drawn once per
+    system object, body and list of forces in a process (a Markdown solve asks for each diagram for
+    its section, its JSON entry and the SVG file beside it), as :func:`tutgen.figure.build.draw_system`."""
     _known(system, body_name)
-    return _FreeBodyBuilder(system, body_name, forces).build()
+    key = (body_name, tuple(forces) if forces is not None else None)
+    hit = _DIAGRAMS.get(id(system))
+    if hit is None or hit[0] is not system:
+        while len(_DIAGRAMS) >= DRAWN_MAX:
+            _DIAGRAMS.pop(next(iter(_DIAGRAMS)))
+        hit = _DIAGRAMS[id(system)] = (system, {})
+    drawing = hit[1].get(key)
+    if drawing is None:
+        drawing = hit[1][key] = _FreeBodyBuilder(system, body_name, forces).build()
+    return drawing
+
+
+#: The diagrams drawn in this process: per system (by identity, kept), by (body, forces).
+_DIAGRAMS: dict[int, tuple[System, dict[tuple[str, tuple[BodyForce, ...] | None], Drawing]]] = {}
 
 
 def _known(system: System, body_name: str) -> Body:
