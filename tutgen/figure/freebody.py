@@ -46,7 +46,7 @@ BLOCK = (1.6, 1.0)
 ASIDE = 0.3
 #: Arrows pushing on one face of a block stand this far apart (cm), so that their labels, set at
 #: their tails, do not meet; and this far from the face's ends at least.
-SLOT = 0.62
+SLOT = 0.7
 FACE_END = 0.22
 
 
@@ -378,8 +378,9 @@ class _FreeBodyBuilder(SystemBuilder):
             return
         if force.moment:
             # round its point, inside a block (an arc round the block would cross the arrows on its
-            # faces), each next moment at the same point a size larger
-            self.torque(names, tex, at3, vec, radius=0.3 + 0.16 * self._moments_at(at3))
+            # faces), each next moment at the same point a size larger and its label a quarter turn on
+            k = self._moments_at(at3)
+            self.torque(names, tex, at3, vec, radius=0.3 + 0.16 * k, start_deg=200 + 90 * k)
             return
         d = self.page_dir(at3, vec / norm)
         if d is None:  # along the line of sight: a label only
