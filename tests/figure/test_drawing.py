@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import dataclasses
+import itertools
+import math
 import xml.etree.ElementTree as ET
 from functools import cache
 from pathlib import Path
@@ -12,7 +14,7 @@ import pytest
 from tests.conftest import SPECS, all_specs
 from tutgen.errors import SpecErrors
 from tutgen.figure.build import draw_system
-from tutgen.figure.scene import Drawing
+from tutgen.figure.scene import Box, Circle, Drawing, Polyline, Stroke
 from tutgen.figure.svg import to_svg
 from tutgen.figure.texlabel import is_safe_tex
 from tutgen.figure.tikz import to_tikz
@@ -56,6 +58,59 @@ def test_drawing_labels_do_not_overlap_and_stay_in_the_picture(key: str) -> None
         assert a.box.inside(drawing.bbox), f"{a.names} leaves the picture"
         for b in labels[i + 1 :]:
             assert not a.box.overlaps(b.box), f"{key}: labels {a.names} and {b.names} overlap"
+
+
+#: What a reader sees as two names run together or a name on a part (cm): the label boxes are padded
+#: by 0.06 round their text; a reader needs more than touching boxes between two names, and no disc or
+#: bar under a name's text (SCARA's m_2, a_2, q_2 on link 2 passed the bare bounding-box test).
+READER_GAP = 0.09
+TEXT_PAD = 0.06
+DISC_CLEAR = 0.04
+
+
+def _text_box(box: Box) -> Box:
+    return Box(box.x0 + TEXT_PAD, box.y0 + TEXT_PAD, box.x1 - TEXT_PAD, box.y1 - TEXT_PAD)
+
+
+def _meets_disc(box: Box, circle: Circle) -> bool:
+    nearest = (min(max(circle.center[0], box.x0), box.x1), min(max(circle.center[1], box.y0), box.y1))
+    return math.dist(nearest, circle.center) < circle.radius + DISC_CLEAR
+
+
+def _meets_segment(box: Box, a: tuple[float, float], b: tuple[float, float]) -> bool:
+    steps = max(2, int(math.dist(a, b) / 0.02))
+    for i in range(steps + 1):
+        x, y = a[0] + (b[0] - a[0]) * i / steps, a[1] + (b[1] - a[1]) * i / steps
+        if box.x0 < x < box.x1 and box.y0 < y < box.y1:
+            return True
+    return False
+
+
+@pytest.mark.parametrize("key", KEYS)
+def test_drawing_labels_read_apart_from_each_other_and_the_parts(key: str) -> None:
+    """Stricter than bounding boxes: a gap between any two labels, and no pin, mass or link bar under
+    a label's text."""
+    _system, drawing = drawn(key)
+    labels = drawing.labels
+    for i, a in enumerate(labels):
+        for b in labels[i + 1 :]:
+            assert not a.box.overlaps(b.box, READER_GAP), f"{key}: labels {a.names} and {b.names} run together"
+        text = _text_box(a.box)
+        for prim in drawing.primitives:
+            if isinstance(prim, Circle):
+                assert not _meets_disc(text, prim), f"{key}: {a.names} lies on a disc at {prim.center}"
+            elif isinstance(prim, Polyline) and prim.stroke is Stroke.BAR:
+                for s, e in itertools.pairwise(prim.points):
+                    assert not _meets_segment(text, s, e), f"{key}: {a.names} lies on a bar"
+
+
+def test_reader_overlap_test_can_fail() -> None:
+    """The predicates above see what they should: a name touching another, a name on a pin."""
+    a = Box(0, 0, 0.5, 0.5)
+    assert a.overlaps(Box(0.55, 0, 1, 0.5), READER_GAP) and not a.overlaps(Box(0.55, 0, 1, 0.5))
+    assert _meets_disc(_text_box(a), Circle((0.55, 0.25), 0.09))  # its edge 0.02 from the text
+    assert not _meets_disc(_text_box(a), Circle((0.9, 0.25), 0.09))
+    assert _meets_segment(_text_box(a), (-1, 0.25), (1, 0.25))
 
 
 @pytest.mark.parametrize("key", KEYS)

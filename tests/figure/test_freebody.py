@@ -15,7 +15,7 @@ from typer.testing import CliRunner
 from tests.conftest import SPECS, all_specs
 from tutgen.cli.main import app
 from tutgen.figure.build import draw_system
-from tutgen.figure.freebody import BodyForce, Frame, body_forces, free_body_diagram
+from tutgen.figure.freebody import FORCE_LENGTH, BodyForce, Frame, body_forces, free_body_diagram
 from tutgen.figure.scene import Polyline, Stroke
 from tutgen.figure.texlabel import is_safe_tex
 from tutgen.model.system import System
@@ -211,3 +211,92 @@ def test_free_body_views_give_each_body_its_tikz_and_svg() -> None:
     own = free_body_views(system, {"cart": [BodyForce("only", "Q", vector=(1, 0, 0))]})
     assert "force:only" in own[0]["labels"] and "force:spring:wall" not in own[0]["labels"]
     assert free_body_views(system_of("tutorial-1:p08-spatial-rr")) == []  # spatial: none
+
+
+def _arrows(drawing: object, reference: object) -> list[tuple[tuple[float, float], tuple[float, float]]]:
+    """The force arrows' shafts (tail, tip) of ``drawing`` that ``reference`` does not have (a force
+    arrow is FORCE_LENGTH long; the world axes' are shorter)."""
+    return [
+        (p.points[0], p.points[-1])
+        for p in drawing.primitives  # type: ignore[attr-defined]
+        if isinstance(p, Polyline)
+        and p.stroke is Stroke.ARROW
+        and len(p.points) == 2
+        and abs(math.dist(p.points[0], p.points[-1]) - FORCE_LENGTH) < 1e-3
+        and p not in reference.primitives  # type: ignore[attr-defined]
+    ]
+
+
+def test_pin_reaction_is_drawn_as_two_components_along_the_axes() -> None:
+    """A reaction of unknown components (R_x, R_y), as the Newton–Euler step hands it over, is drawn
+    as a textbook draws it: one horizontal and one vertical arrow, each named by its component (the
+    step's R_{pivot,x}, R_{pivot,y}), reversed on the parent where the components are negated."""
+    system = load_system(P03)
+    rx, ry = sp.Symbol("R[pivot].x"), sp.Symbol("R[pivot].y")
+    name = "reaction at joint 'pivot'"
+    for body, sign in (("pendulum", 1), ("cart", -1)):
+        force = BodyForce(name, "pivot", vector=(sign * rx, sign * ry, 0), frame=Frame.WORLD, tex="\\mathbf{R}_{p}")
+        drawing = free_body_diagram(system, body, [force])
+        tex = {lb.names: lb.tex for lb in drawing.labels if lb.names.startswith("force:")}
+        assert tex == {f"force:{name}/x": "R_{\\mathrm{pivot},x}", f"force:{name}/y": "R_{\\mathrm{pivot},y}"}
+        assert f"force:{name}" in drawing.names  # the force itself is named, by its components
+        shafts = _arrows(drawing, free_body_diagram(system, body, []))
+        assert len(shafts) == 2, body
+        horizontal = [s for s in shafts if abs(s[0][1] - s[1][1]) < 1e-6]
+        vertical = [s for s in shafts if abs(s[0][0] - s[1][0]) < 1e-6]
+        assert len(horizontal) == len(vertical) == 1, shafts
+        (tail, tip), (vtail, vtip) = horizontal[0], vertical[0]
+        assert (tip[0] - tail[0]) * sign > 0 and (vtip[1] - vtail[1]) * sign > 0  # +x, +y on the child
+
+
+def test_slide_normal_force_is_named_as_the_step_names_it() -> None:
+    system = load_system(P03)
+    force = BodyForce("reaction at joint 'slider'", "slider", vector=(0, sp.Symbol("R[slider].n"), 0))
+    drawing = free_body_diagram(system, "cart", [force])
+    assert [lb.tex for lb in drawing.labels if lb.names.startswith("force:")] == ["N_{\\mathrm{slider}}"]
+
+
+def test_a_force_that_is_not_of_unknown_components_stays_one_arrow() -> None:
+    system = load_system(P03)
+    k, x = sp.symbols("k x")
+    drawing = free_body_diagram(system, "cart", [BodyForce("spring", k * x, vector=(-k * x, k * x, 0))])
+    assert [lb.names for lb in drawing.labels if lb.names.startswith("force:")] == ["force:spring"]
+
+
+def test_cart_arrows_on_one_face_stand_apart_and_the_block_fits_them() -> None:
+    """p03's cart as the Newton–Euler step draws it (10 arrows): no two force arrows cross or lie on
+    one line, every arrow that pushes on the block ends on its outline, and the block is sized to
+    the arrows on its faces (three on its right face: the spring, the inertial force, R_{pivot,x})."""
+    from tests.conftest import solved
+    from tutgen.render.sections.newton_euler import diagram_forces
+
+    system, d, _ = solved(str(P03))
+    (balance,) = [b for b in d.newton_euler.planar.balances if b.body == "cart"]
+    forces = diagram_forces(balance, {c.name: c.latex for c in system.coordinates})
+    drawing = free_body_diagram(system, "cart", forces)
+    shafts = _arrows(drawing, free_body_diagram(system, "cart", []))
+    assert len(shafts) == 7  # W, push, wall, N, R_x, R_y, inertial (the two couples are arcs)
+    for i, (a, b) in enumerate(shafts):
+        for c, e in shafts[i + 1 :]:
+            assert not _cross(a, b, c, e), (a, b, c, e)
+            # parallel arrows are at least 0.5 cm apart or do not overlap along their line
+            if abs((b[0] - a[0]) * (e[1] - c[1]) - (b[1] - a[1]) * (e[0] - c[0])) < 1e-9:
+                apart = abs((c[0] - a[0]) * (b[1] - a[1]) - (c[1] - a[1]) * (b[0] - a[0])) / math.dist(a, b)
+                assert apart > 0.5 or _disjoint(a, b, c, e), (a, b, c, e)
+    block = next(p for p in drawing.primitives if isinstance(p, Polyline) and p.closed and p.fill.value == "gray")
+    xs, ys = [p[0] for p in block.points], [p[1] for p in block.points]
+    right = [tip for tail, tip in shafts if abs(tip[0] - max(xs)) < 1e-3 and tail[0] > tip[0]]
+    assert len(right) == 3 and all(min(ys) < tip[1] < max(ys) for tip in right)
+
+
+def _cross(a: tuple[float, float], b: tuple[float, float], c: tuple[float, float], d: tuple[float, float]) -> bool:
+    def side(p: tuple[float, float], q: tuple[float, float], r: tuple[float, float]) -> float:
+        return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
+
+    return side(a, b, c) * side(a, b, d) < -1e-9 and side(c, d, a) * side(c, d, b) < -1e-9
+
+
+def _disjoint(a: tuple[float, float], b: tuple[float, float], c: tuple[float, float], d: tuple[float, float]) -> bool:
+    ux, uy = (b[0] - a[0]) / math.dist(a, b), (b[1] - a[1]) / math.dist(a, b)
+    s = sorted(((c[0] - a[0]) * ux + (c[1] - a[1]) * uy, (d[0] - a[0]) * ux + (d[1] - a[1]) * uy))
+    return s[0] >= math.dist(a, b) - 1e-6 or s[1] <= 1e-6

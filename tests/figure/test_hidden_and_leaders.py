@@ -133,3 +133,32 @@ def test_unknown_centres_of_mass_sit_on_their_frames_and_no_spokes_are_drawn() -
     p03 = SystemBuilder(load_system(SPECS / "tutorial-1" / "p03-cart-pendulum.yaml"))
     p03.build()
     assert dict(p03.sizes)["l"] > 0
+
+
+def test_parts_are_drawn_back_to_front_whatever_the_spec_order() -> None:
+    """p01 with its parts listed front first (point mass, cylinder, block): the block, farthest from
+    the viewer, is still drawn first, so the cylinder's white outline hides the block's face behind
+    it; and the drawing is the same as with the spec's own order."""
+    from tutgen.figure.scene import Fill
+    from tutgen.spec.validate import load_system_text
+
+    path = P01
+    text = path.read_text()
+    block = "      block: {shape: box, size: [5 cm, 15 cm, 5 cm], density: rho}\n"
+    point = "      point: {shape: point, mass: m_p, at: [10 cm, 0, 0]}\n"
+    assert block in text and point in text
+    lines = text.replace(block, "").replace(point, "").splitlines(keepends=True)
+    at = next(i for i, ln in enumerate(lines) if ln.startswith("      cylinder:"))
+    lines[at:at] = [point]  # the point mass first, then the cylinder, then the block
+    lines.insert(at + 2, block)
+    reordered = "".join(lines)
+    assert reordered.index("point:") < reordered.index("cylinder:") < reordered.index("block:")
+    front_first = draw_system(load_system_text(reordered))
+    own = draw_system(load_system(path))
+    hulls = [p for p in front_first.primitives if isinstance(p, Polyline) and p.closed and p.fill is Fill.WHITE]
+    own_hulls = [p for p in own.primitives if isinstance(p, Polyline) and p.closed and p.fill is Fill.WHITE]
+    assert hulls == own_hulls and len(hulls) == 2
+    # the block's hull (8 corners' hull: 6 points) first, the cylinder's (many rim points) after it
+    assert len(hulls[0].points) == 6 and len(hulls[1].points) > 6
+    dots = [i for i, p in enumerate(front_first.primitives) if getattr(p, "fill", None) is Fill.BLACK]
+    assert dots and dots[0] > front_first.primitives.index(hulls[1])  # the point mass, nearest, last

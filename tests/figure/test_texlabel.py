@@ -43,3 +43,41 @@ def test_texlabel_svg_runs_greek_and_subscripts() -> None:
 def test_texlabel_size_grows_with_the_text() -> None:
     assert label_size("\\mathrm{motor}")[0] > label_size("\\tau")[0]
     assert label_size("m_{2}")[0] < label_size("mm")[0] + 0.01
+
+
+@pytest.mark.parametrize(
+    ("tex", "runs"),
+    [
+        # pdflatex: \mathbf sets its letters (and digits) upright bold, its subscript's \mathrm upright
+        pytest.param(
+            "\\mathbf{R}_{\\mathrm{pivot}}", [("R", "bold", "base"), ("pivot", "upright", "sub")], id="mathbf-braced"
+        ),
+        pytest.param("\\mathbf W", [("W", "bold", "base")], id="mathbf-unbraced"),
+        pytest.param("\\mathbf{F}_{2}", [("F", "bold", "base"), ("2", "upright", "sub")], id="mathbf-digit-outside"),
+        # \mathbf leaves small Greek italic and not bold; \boldsymbol makes it bold italic
+        pytest.param("\\mathbf{\\tau}", [("τ", "italic", "base")], id="mathbf-small-greek"),
+        pytest.param("\\boldsymbol\\tau_{1}", [("τ", "bolditalic", "base"), ("1", "upright", "sub")], id="boldsymbol"),
+        pytest.param("\\boldsymbol{\\Omega}", [("Ω", "bold", "base")], id="boldsymbol-capital-greek"),
+        pytest.param(
+            "R_{\\mathrm{pivot},x}",
+            [("R", "italic", "base"), ("pivot,", "upright", "sub"), ("x", "italic", "sub")],
+            id="comma-in-subscript",
+        ),
+    ],
+)
+def test_texlabel_svg_runs_set_fonts_as_pdflatex_does(tex: str, runs: list[tuple[str, str, str]]) -> None:
+    assert is_safe_tex(tex)
+    assert svg_runs(tex) == runs
+
+
+def test_svg_sets_bold_labels_bold() -> None:
+    from tutgen.figure.scene import Box, Drawing, Label
+    from tutgen.figure.svg import to_svg
+
+    labels = (
+        Label("force:w", "\\mathbf{W}", (1, 1), 0.3, 0.5),
+        Label("force:t", "\\boldsymbol\\tau", (2, 1), 0.3, 0.5),
+    )
+    svg = to_svg(Drawing((), labels, Box(0, 0, 3, 2), "planar"))
+    assert '<tspan font-style="normal" font-weight="bold">W</tspan>' in svg
+    assert '<tspan font-style="italic" font-weight="bold">τ</tspan>' in svg

@@ -47,19 +47,25 @@ def test_diagram_labels_are_the_steps_symbols() -> None:
         "\\mathbf{F}_{\\text{wall}}",
         "\\mathbf{F}_{\\text{push}}",
         "\\tau_{\\text{motor}}",
-        "\\mathbf{R}_{\\mathrm{slider}}",
+        "N_{\\mathrm{slider}}",  # the slide's normal force, as the step's sum of y forces names it
         "M_{\\mathrm{slider}}",
-        "\\mathbf{R}_{\\mathrm{pivot}}",  # on the parent: the same name, the arrow reversed
+        # the pin's reaction as its two components along the axes, as the step's balances name them;
+        # on the parent the same names, the arrows reversed
+        "R_{\\mathrm{pivot},x}",
+        "R_{\\mathrm{pivot},y}",
         "\\mathbf{F}_{\\text{inertial}}",
     ):
         assert "$\\vphantom{(}" + tex + "$" in cart, tex
     for tex in (
         "\\mathbf{W}",
         "\\tau_{\\text{motor}}",
-        "\\mathbf{R}_{\\mathrm{pivot}}",
+        "R_{\\mathrm{pivot},x}",
+        "R_{\\mathrm{pivot},y}",
         "\\mathbf{F}_{\\text{inertial}}",
     ):
         assert "$\\vphantom{(}" + tex + "$" in pendulum, tex
+    # no reaction drawn as one (diagonal) arrow any more
+    assert "\\mathbf{R}_{\\mathrm{pivot}}" not in cart + pendulum
     assert "\\mathrm{slider}" not in pendulum and "\\text{wall}" not in pendulum
     # the model's own names (R_1x, k x) are not used where the step has its own
     assert "R_{1x}" not in cart and "k x" not in cart

@@ -26,14 +26,17 @@ class AxesDrawing(ElementDrawing):
         the label at its end, and no second arrow is drawn along it; the x axes are short and
         unlabelled."""
         long_arm = len(self.s.joints) > 3
-        axis_end: dict[str, tuple[Vec, Vec]] = {}
+        axis_end: dict[str, tuple[Vec, Vec, float]] = {}  # child -> its joint point, axis, line end
         for j in self.s.joints:
             if j.kind is JointKind.FIXED:
                 continue
             at = self.pose.joint_at[j.name]
             axis = self.pose.axis_of[j.name]
-            self.line([self.P(at - axis * 0.8 / self.scale), self.P(at + axis * 1.1 / self.scale)], Stroke.AXIS)
-            axis_end[j.child] = (at, axis)
+            # a wrist joint's axis line reaches past its arc, set along it (Canvas.axis_shift)
+            shift = self.axis_shift(j.name)
+            lo, hi = min(-0.8, shift - 0.6), max(1.1, shift + 0.6)
+            self.line([self.P(at + axis * lo / self.scale), self.P(at + axis * hi / self.scale)], Stroke.AXIS)
+            axis_end[j.child] = (at, axis, hi)
         k = 0
         for b in self.s.bodies:
             j = self.pose.by_child.get(b.name)
@@ -46,10 +49,10 @@ class AxesDrawing(ElementDrawing):
                 if d is None:
                     continue
                 names, tex = f"frame:{b.name}:{letter}", f"{letter}_{{{k}}}"
-                if long_arm and letter == "z" and b.name in axis_end and _on_axis(o, r[:, col], *axis_end[b.name]):
-                    at, axis = axis_end[b.name]
-                    tip = at + axis * 1.1 / self.scale
-                    self.head(self.P(at + axis * 0.9 / self.scale), self.P(tip))
+                if long_arm and letter == "z" and b.name in axis_end and _on_axis(o, r[:, col], *axis_end[b.name][:2]):
+                    at, axis, hi = axis_end[b.name]
+                    tip = at + axis * hi / self.scale
+                    self.head(self.P(at + axis * (hi - 0.2) / self.scale), self.P(tip))
                     self.label(names, tex, self.P(tip), self.page_dir(tip, axis) or d)
                     continue
                 start = self.P(o)

@@ -10,7 +10,7 @@ from tutgen.figure.geometry import convex_hull, points_box
 from tutgen.figure.pose import Vec
 from tutgen.figure.scene import Box, Fill, Point, Stroke
 from tutgen.figure.texlabel import expr_tex, word_tex
-from tutgen.model.system import GROUND, Joint, JointKind, Shape
+from tutgen.model.system import GROUND, Body, Joint, JointKind, Shape
 
 
 class BodyDrawing(Canvas):
@@ -109,56 +109,64 @@ class BodyDrawing(Canvas):
 
     def draw_bodies(self) -> None:
         pose = self.pose
-        for b in self.s.bodies:
-            if self.only is not None and b.name != self.only:
-                continue
+        for b, part in self.back_to_front([b for b in self.s.bodies if self.only in (None, b.name)]):
             composite = len(b.parts) > 1
-            for part in b.parts:
-                at3 = pose.point(b.name, self.num.vec(part.at))
-                at = self.P(at3)
-                name = f"body:{b.name}/{part.name}" if composite else f"body:{b.name}"
-                tex = word_tex(part.name) if composite else self.body_tex(b)
-                if composite and part.mass is not None:
-                    tex = expr_tex(part.mass, self.latex_of) or tex
-                shape = part.shape
-                if shape is Shape.POINT:
-                    if (
-                        b.name in self.sliders
-                        and np.linalg.norm(np.array(at) - np.array(self.sliders[b.name][0])) < 1e-3
-                    ):
-                        continue  # the slider block is the mass
-                    if b.is_simple and part.inertia is not None and any(v != 0 for v in part.inertia):
-                        self.circle(at, MASS + 0.04, Fill.GRAY)
-                    else:
-                        self.circle(at, MASS, Fill.BLACK)
-                    self.label(name, tex, at, self.outward(at))
-                    continue
-                pts = [self.P(p) for p in self.part_points(b, part, pose)]
-                if shape is Shape.ROD:
-                    self.line(pts, Stroke.BAR)
-                    self.label(name, tex, ((pts[0][0] + pts[1][0]) / 2, (pts[0][1] + pts[1][1]) / 2), self.outward(at))
-                    continue
-                if shape in (Shape.SPHERE, Shape.SPHERICAL_SHELL):
-                    r = float(np.linalg.norm(np.array(pts[0]) - np.array(at)))
-                    r = max(r, MASS)
-                    self.circle(at, r, Fill.GRAY)
-                    self.label(name, tex, (at[0] + r * 0.7, at[1] + r * 0.7), (0.7, 0.7))
-                    continue
-                if shape is Shape.GENERAL:
-                    self.circle(at, MASS + 0.05, Fill.GRAY)
-                    self.label(name, tex, at, self.outward(at))
-                    continue
-                hull = convex_hull(pts)
-                self.line(hull, Stroke.OUTLINE, Fill.WHITE, closed=True)
-                if self.view == "oblique" and shape is Shape.BOX:
-                    self.box_edges(pts, pose.frames[b.name][1] @ self.num.mat(part.rotation))
-                elif self.view == "oblique":
-                    self.cylinder_rims(b, part, pts)
-                cx = sum(p[0] for p in hull) / len(hull)
-                cy = sum(p[1] for p in hull) / len(hull)
-                # the name inside the outline, where a textbook writes it; it is placed before the labels
-                # drawn later (loads, coordinates), which then keep off it
-                self.label(name, tex, (cx, cy), (0.0, 0.0))
+            at3 = pose.point(b.name, self.num.vec(part.at))
+            at = self.P(at3)
+            name = f"body:{b.name}/{part.name}" if composite else f"body:{b.name}"
+            tex = word_tex(part.name) if composite else self.body_tex(b)
+            if composite and part.mass is not None:
+                tex = expr_tex(part.mass, self.latex_of) or tex
+            shape = part.shape
+            if shape is Shape.POINT:
+                if b.name in self.sliders and np.linalg.norm(np.array(at) - np.array(self.sliders[b.name][0])) < 1e-3:
+                    continue  # the slider block is the mass
+                if b.is_simple and part.inertia is not None and any(v != 0 for v in part.inertia):
+                    self.circle(at, MASS + 0.04, Fill.GRAY)
+                else:
+                    self.circle(at, MASS, Fill.BLACK)
+                self.label(name, tex, at, self.outward(at))
+                continue
+            pts = [self.P(p) for p in self.part_points(b, part, pose)]
+            if shape is Shape.ROD:
+                self.line(pts, Stroke.BAR)
+                self.label(name, tex, ((pts[0][0] + pts[1][0]) / 2, (pts[0][1] + pts[1][1]) / 2), self.outward(at))
+                continue
+            if shape in (Shape.SPHERE, Shape.SPHERICAL_SHELL):
+                r = float(np.linalg.norm(np.array(pts[0]) - np.array(at)))
+                r = max(r, MASS)
+                self.circle(at, r, Fill.GRAY)
+                self.label(name, tex, (at[0] + r * 0.7, at[1] + r * 0.7), (0.7, 0.7))
+                continue
+            if shape is Shape.GENERAL:
+                self.circle(at, MASS + 0.05, Fill.GRAY)
+                self.label(name, tex, at, self.outward(at))
+                continue
+            hull = convex_hull(pts)
+            self.line(hull, Stroke.OUTLINE, Fill.WHITE, closed=True)
+            if self.view == "oblique" and shape is Shape.BOX:
+                self.box_edges(pts, pose.frames[b.name][1] @ self.num.mat(part.rotation))
+            elif self.view == "oblique":
+                self.cylinder_rims(b, part, pts)
+            cx = sum(p[0] for p in hull) / len(hull)
+            cy = sum(p[1] for p in hull) / len(hull)
+            # the name inside the outline, where a textbook writes it; it is placed before the labels
+            # drawn later (loads, coordinates), which then keep off it
+            self.label(name, tex, (cx, cy), (0.0, 0.0))
+
+    def back_to_front(self, bodies: list[Body]) -> list[tuple[Body, object]]:
+        """The bodies' parts in drawing order: in the oblique view the farthest from the viewer first
+        (by its centre's depth), so that each part's white-filled outline hides what lies behind it, as
+        a line drawing does (p01's cylinder in front of the block's face, the point mass in front of
+        both; the tilting plate's rotor behind its plate); spec order among parts at one depth and in
+        the planar view."""
+        pairs = [(b, part) for b in bodies for part in b.parts]
+        if self.view != "oblique" or len(pairs) < 2:
+            return pairs
+        w = self.toward_viewer()
+        depth = [float(self.pose.point(b.name, self.num.vec(part.at)) @ w) for b, part in pairs]
+        order = sorted(range(len(pairs)), key=lambda i: (round(depth[i], 9), i))
+        return [pairs[i] for i in order]
 
     def toward_viewer(self) -> Vec:
         """The world direction the oblique view looks along, toward the viewer: the projection sends

@@ -46,7 +46,29 @@ END_ON = 0.5
 BETTER = 0.2
 
 
+#: The drawings made in this process, by the identity of their system (kept, so that the id is not
+#: reused while the entry lives): one solve asks for its figure several times (the solution's view,
+#: the JSON entry, the SVG beside the Markdown, the free-body step's check of the view), and a
+#: Drawing is immutable, so each is drawn once. The oldest entry goes past :data:`DRAWN_MAX` (a sheet
+#: draws each variant's own system once).
+_DRAWN: dict[int, tuple[System, Drawing]] = {}
+DRAWN_MAX = 64
+
+
 def draw_system(system: System) -> Drawing:
+    """The schematic of ``system``, drawn once per system object in a process (see
+    :func:`_draw_system` for how, and :data:`_DRAWN`)."""
+    hit = _DRAWN.get(id(system))
+    if hit is not None and hit[0] is system:
+        return hit[1]
+    drawing = _draw_system(system)
+    while len(_DRAWN) >= DRAWN_MAX:
+        _DRAWN.pop(next(iter(_DRAWN)))
+    _DRAWN[id(system)] = (system, drawing)
+    return drawing
+
+
+def _draw_system(system: System) -> Drawing:
     """The schematic of ``system`` (see the module docstring for how it is made).
 
     When the default pose makes two links overlap (a chain folding back on itself), the next sign

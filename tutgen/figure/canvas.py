@@ -29,6 +29,9 @@ MASS = 0.13
 SLIDER = (0.8, 0.5)  # width along the rail, height (cm)
 ARC = 0.75
 HEAD = (0.22, 0.08)  # arrow head length, half width (cm)
+#: Joints drawn at one page point (a spherical wrist's three) have their marks set this far apart
+#: (cm) along their own axes, one step per joint already there (see Canvas.axis_shift).
+WRIST_STEP = 0.75
 
 #: Sign patterns tried for the default relative angles when the first pose makes links overlap.
 POSE_SIGNS = ((1, 1, 1, 1, 1, 1), (1, -1, 1, -1, 1, -1), (1, 1, -1, -1, 1, 1), (-1, 1, 1, -1, -1, 1))
@@ -409,6 +412,35 @@ class Canvas:
             radius = num(dims.get("radius", 0.1))
             return [at + radius * e for e in (*np.eye(3), *-np.eye(3))]
         return [at]
+
+    def axis_shift(self, joint_name: str) -> float:
+        """How far along its own axis (cm on the page, signed) a revolute joint's marks are drawn: its
+        angle's arc and the end of its axis line. A joint that falls on the page point of an earlier
+        joint (the three axes of a spherical wrist meet in one point) is drawn one
+        :data:`WRIST_STEP` farther along its axis per such joint, away from the picture's centre: an
+        arc anywhere on the axis line shows the same rotation, and the wrist's arcs and labels no
+        longer lie on each other. 0 for the first joint at a point, and where the axis is seen nearly
+        end-on (the shift would not show)."""
+        if not hasattr(self, "_axis_shifts"):
+            shifts: dict[str, float] = {}
+            seen: list[Point] = []
+            pts = [self.P(p) for p in self.key_points(self.pose)]
+            cx, cy = sum(p[0] for p in pts) / len(pts), sum(p[1] for p in pts) / len(pts)
+            for j in self.s.joints:
+                if j.kind is not JointKind.REVOLUTE:
+                    continue
+                at3, axis = self.pose.joint_at[j.name], self.pose.axis_of[j.name]
+                here = self.P(at3)
+                k = sum(1 for p in seen if math.dist(p, here) < 0.25)
+                seen.append(here)
+                tip = self.P(at3 + axis / self.scale)
+                seen_len = math.dist(tip, here)  # how long 1 cm of the axis looks on the page
+                if k == 0 or self.view != "oblique" or seen_len < 0.35:
+                    continue
+                out = 1.0 if math.dist(tip, (cx, cy)) >= math.dist(self.P(at3 - axis / self.scale), (cx, cy)) else -1.0
+                shifts[j.name] = out * WRIST_STEP * k / seen_len
+            self._axis_shifts = shifts
+        return self._axis_shifts.get(joint_name, 0.0)
 
     def outward(self, at: Point) -> Point:
         """A direction away from the skeleton's centre (for a label)."""

@@ -155,7 +155,11 @@ class CoordinateDrawing(BodyDrawing):
                 if np.linalg.norm(np.cross(now_dir, axis)) < 1e-9:
                     now_dir = self.pose.frames[j.child][1] @ np.array([0, 1.0, 0])
                     zero_dir = zero.frames[j.child][1] @ np.array([0, 1.0, 0])
-            # joints at one place (a wrist) get arcs of growing radius, so they do not lie on each other
+            # joints at one place (a wrist): each next arc set along its own axis (axis_shift), or,
+            # where that does not show (a planar view), of a growing radius, so they do not lie on
+            # each other
+            shift = self.axis_shift(j.name)
+            center = center + axis / (np.linalg.norm(axis) or 1.0) * (shift / self.scale)
             here = self.P(center)
             shared = sum(1 for p in getattr(self, "_arc_centres", []) if math.dist(p, here) < 0.25)
             self._arc_centres = [*getattr(self, "_arc_centres", []), here]

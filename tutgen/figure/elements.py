@@ -161,7 +161,7 @@ class ElementDrawing(CoordinateDrawing):
                 tex = self.tex_of(nz[0], load.name) if len(nz) == 1 else word_tex(load.name)
                 self.torque(names, tex, at3, t)
 
-    def torque(self, names: str, tex: str, at3: Vec, t: Vec, radius: float = 0.36) -> None:
+    def torque(self, names: str, tex: str, at3: Vec, t: Vec, radius: float = 0.36, start_deg: float = 200) -> None:
         at = self.P(at3)
         n = float(np.linalg.norm(t))
         if n < 1e-12:
@@ -169,7 +169,7 @@ class ElementDrawing(CoordinateDrawing):
         axis = t / n
         if self.view == "planar" and abs(abs(float(axis @ self.plane_normal)) - 1) < 1e-6:
             sign = 1.0 if float(axis @ self.plane_normal) > 0 else -1.0
-            start = math.radians(200)
+            start = math.radians(start_deg)  # where the arc starts and its label stands
             sweep = math.radians(250) * sign
             steps = 30
             pts = [

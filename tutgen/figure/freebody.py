@@ -21,6 +21,7 @@ drawn pulling (in tension). A force whose direction vanishes at the pose is left
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import StrEnum
@@ -28,7 +29,7 @@ from enum import StrEnum
 import numpy as np
 import sympy as sp
 
-from tutgen.figure.build import SystemBuilder
+from tutgen.figure.build import DRAWN_MAX, SystemBuilder
 from tutgen.figure.canvas import TARGET_SIZE
 from tutgen.figure.geometry import prim_box
 from tutgen.figure.labels import place_labels
@@ -43,6 +44,10 @@ BODY_SIZE = 0.6 * TARGET_SIZE
 BLOCK = (1.6, 1.0)
 #: How far an arrow is moved aside when it would lie on the line of another (cm).
 ASIDE = 0.3
+#: Arrows pushing on one face of a block stand this far apart (cm), so that their labels, set at
+#: their tails, do not meet; and this far from the face's ends at least.
+SLOT = 0.7
+FACE_END = 0.22
 
 
 class Frame(StrEnum):
@@ -80,9 +85,24 @@ class BodyForce:
 
 def free_body_diagram(system: System, body_name: str, forces: Sequence[BodyForce] | None = None) -> Drawing:
     """The free-body diagram of ``body_name`` with ``forces`` (by default :func:`body_forces`);
-    a :class:`ValueError` naming the bodies there are when there is no such body."""
+    a :class:`ValueError` naming the bodies there are when there is no such body. Drawn once per
+    system object, body and list of forces in a process (a Markdown solve asks for each diagram for
+    its section, its JSON entry and the SVG file beside it), as :func:`tutgen.figure.build.draw_system`."""
     _known(system, body_name)
-    return _FreeBodyBuilder(system, body_name, forces).build()
+    key = (body_name, tuple(forces) if forces is not None else None)
+    hit = _DIAGRAMS.get(id(system))
+    if hit is None or hit[0] is not system:
+        while len(_DIAGRAMS) >= DRAWN_MAX:
+            _DIAGRAMS.pop(next(iter(_DIAGRAMS)))
+        hit = _DIAGRAMS[id(system)] = (system, {})
+    drawing = hit[1].get(key)
+    if drawing is None:
+        drawing = hit[1][key] = _FreeBodyBuilder(system, body_name, forces).build()
+    return drawing
+
+
+#: The diagrams drawn in this process: per system (by identity, kept), by (body, forces).
+_DIAGRAMS: dict[int, tuple[System, dict[tuple[str, tuple[BodyForce, ...] | None], Drawing]]] = {}
 
 
 def _known(system: System, body_name: str) -> Body:
@@ -284,6 +304,8 @@ class _FreeBodyBuilder(SystemBuilder):
         self.given = forces
         self.slider = BLOCK
         self.drawn: list[tuple[Point, Point]] = []  # the force arrows so far, tail and tip
+        # force name -> (the block face it pushes on, its offset along it), set by draw_block
+        self.face_slots: dict[str, tuple[tuple[str, int] | None, float]] = {}
         for c in system.coordinates:
             self.latex_of[c.qd] = "\\dot{" + self.latex_of[c.q] + "}"
 
@@ -294,12 +316,13 @@ class _FreeBodyBuilder(SystemBuilder):
         self.choose_body_scale()
         self.sliders = {}
         body = self.s.body(self.only)  # type: ignore[arg-type]
+        given = self.given if self.given is not None else body_forces(self.s, body.name, tuple(self.plane_normal))
+        forces = [part for force in given for part in components(force)]
         joint = self.pose.by_child.get(body.name)
         if joint is not None and joint.kind is JointKind.PRISMATIC:
-            self.draw_prismatic(joint, rail=False)
+            self.draw_block(joint, body, forces)
         self.draw_links()
         self.draw_bodies()
-        forces = self.given if self.given is not None else body_forces(self.s, body.name, tuple(self.plane_normal))
         for force in forces:
             self.draw_force(body, force)
         self.draw_world_axes()
@@ -354,8 +377,10 @@ class _FreeBodyBuilder(SystemBuilder):
             self.remarks.append(f"the force {force.name} is zero at the drawing's pose and is not drawn")
             return
         if force.moment:
-            base = BLOCK[1] / 2 + 0.12 if self.on_block(body.name, self.P(at3)) else 0.3
-            self.torque(names, tex, at3, vec, radius=base + 0.14 * self._moments_at(at3))
+            # round its point, inside a block (an arc round the block would cross the arrows on its
+            # faces), each next moment at the same point a size larger and its label a quarter turn on
+            k = self._moments_at(at3)
+            self.torque(names, tex, at3, vec, radius=0.3 + 0.16 * k, start_deg=200 + 90 * k)
             return
         d = self.page_dir(at3, vec / norm)
         if d is None:  # along the line of sight: a label only
@@ -368,7 +393,7 @@ class _FreeBodyBuilder(SystemBuilder):
             self.label(names, tex, tip, d)
             return
         if self.on_block(body.name, at):  # a force on the block pushes on its face
-            at = self.block_face(body.name, (-d[0], -d[1]))
+            at = self.block_face(body.name, (-d[0], -d[1]), force.name)
         # every other force pushes on its point: the arrow ends there
         tail, tip = self.aside((at[0] - d[0] * FORCE_LENGTH, at[1] - d[1] * FORCE_LENGTH), at)
         self.arrow(tail, tip)
@@ -380,17 +405,62 @@ class _FreeBodyBuilder(SystemBuilder):
             return False
         centre, u = self.sliders[body]
         dx, dy = at[0] - centre[0], at[1] - centre[1]
-        return abs(dx * u[0] + dy * u[1]) <= BLOCK[0] / 2 and abs(-dx * u[1] + dy * u[0]) <= BLOCK[1] / 2
+        w, h = self.slider
+        return abs(dx * u[0] + dy * u[1]) <= w / 2 + 1e-9 and abs(-dx * u[1] + dy * u[0]) <= h / 2 + 1e-9
 
-    def block_face(self, body: str, d: Point) -> Point:
-        """Where a line from the block's centre in the page direction ``d`` leaves the block."""
+    def block_face(self, body: str, d: Point, name: str = "") -> Point:
+        """Where a line from the block's centre in the page direction ``d`` leaves the block, moved
+        along the face to the force's own place on it (:meth:`draw_block`), so that the arrows on
+        one face stand side by side."""
         centre, u = self.sliders[body]
+        w, h = self.slider
         along = abs(d[0] * u[0] + d[1] * u[1])
         across = abs(-d[0] * u[1] + d[1] * u[0])
-        t = min(
-            BLOCK[0] / 2 / along if along > 1e-9 else math.inf, BLOCK[1] / 2 / across if across > 1e-9 else math.inf
-        )
-        return (centre[0] + d[0] * t, centre[1] + d[1] * t)
+        t = min(w / 2 / along if along > 1e-9 else math.inf, h / 2 / across if across > 1e-9 else math.inf)
+        at = (centre[0] + d[0] * t, centre[1] + d[1] * t)
+        face, offset = self.face_slots.get(name, (None, 0.0))
+        if face is None or face != _face(d, u, self.slider):
+            return at
+        t_dir = (-u[1], u[0]) if face[0] == "across" else (u[0], u[1])  # the direction along the face
+        return (at[0] + t_dir[0] * offset, at[1] + t_dir[1] * offset)
+
+    def draw_block(self, joint: object, body: Body, forces: Sequence[BodyForce]) -> None:
+        """The slider block, sized to the arrows on it: each force that acts inside the block (not
+        the weight, not a moment) pushes on the face it points into; the arrows on one face are set
+        side by side at :data:`SLOT` apart (clear of the weight's line on the face below the centre),
+        and the block grows so that they fit on it."""
+        self.slider = BLOCK
+        self.draw_prismatic(joint, rail=False)  # type: ignore[arg-type]
+        _centre, u = self.sliders[body.name]
+        faces: dict[tuple[str, int], list[str]] = {}
+        weight_face: tuple[str, int] | None = None
+        for force in forces:
+            if force.moment or force.toward is not None:
+                continue
+            at3 = self.world(body, force.at, force.at_frame, point=True)
+            vec = self.world(body, force.vector, force.frame, point=False)
+            norm = float(np.linalg.norm(vec))
+            d = self.page_dir(at3, vec / norm) if norm > 1e-12 else None
+            if d is None or not self.on_block(body.name, self.P(at3)):
+                continue
+            if force.name == "gravity":  # it hangs from the centre: its face keeps the middle free
+                weight_face = _face(d, u, BLOCK)
+                continue
+            faces.setdefault(_face((-d[0], -d[1]), u, BLOCK), []).append(force.name)
+        w, h = BLOCK
+        for face, names in faces.items():
+            offsets = _slots(len(names), face == weight_face)
+            for name, off in zip(names, offsets, strict=True):
+                self.face_slots[name] = (face, off)
+            room = 2 * max(abs(o) for o in offsets) + 2 * FACE_END
+            if face[0] == "across":  # a face across the slide: its length is the block's height
+                h = max(h, room)
+            else:
+                w = max(w, room)
+        if (w, h) != BLOCK:  # drawn again, at its new size (the block is the first thing drawn)
+            del self.prims[:], self.obstacles[:], self.requests[:]
+            self.slider = (round(w, 3), round(h, 3))
+            self.draw_prismatic(joint, rail=False)  # type: ignore[arg-type]
 
     def aside(self, tail: Point, tip: Point) -> tuple[Point, Point]:
         """The arrow, moved aside (perpendicular, by :data:`ASIDE`) while it lies on the line of an arrow
@@ -449,6 +519,70 @@ class _FreeBodyBuilder(SystemBuilder):
         for b in pts[1:]:
             box = box.union(b)
         self.axes_at((box.x0 - 1.3, box.y0 - 0.2), 0.6)
+
+
+def components(force: BodyForce) -> tuple[BodyForce, ...]:
+    """A force of unknown components, drawn as a textbook draws it: one arrow per component along
+    its world axis, each named by its own symbol (a pin's reaction ``(R_x, R_y)`` as ``R_{pivot,x}``
+    and ``R_{pivot,y}``, a slide's normal force as ``N_{slider}``), the arrow reversed for a negative
+    component (Newton's third law on the parent), so the label carries no sign. The parts are named
+    ``<name>/x``, ``<name>/y``, ``<name>/z``. A force is split when it is not a moment, has a vector,
+    and every non-zero component is a symbol with its sign: two or more of them, or one that is a
+    joint's reaction (``R[slider].n``); any other force is returned as it is."""
+    if force.moment or force.toward is not None:
+        return (force,)
+    values = [sp.sympify(v) for v in force.vector]
+    parts = [(i, *_signed_symbol(v)) for i, v in enumerate(values) if v != 0]
+    if not parts or any(sym is None for _i, _sign, sym in parts):
+        return (force,)
+    if len(parts) == 1 and _reaction_tex(parts[0][2]) is None:  # type: ignore[arg-type]
+        return (force,)
+    out = []
+    for i, sign, sym in parts:
+        assert sym is not None
+        unit = tuple(sp.Integer(sign if k == i else 0) for k in range(len(values)))
+        tex = _reaction_tex(sym) or ""
+        name = f"{force.name}/{'xyz'[i]}" if len(parts) > 1 else force.name
+        out.append(BodyForce(name, sym, force.at, unit, force.frame, force.at_frame, tex=tex))
+    return tuple(out)
+
+
+def _signed_symbol(v: sp.Expr) -> tuple[int, sp.Symbol | None]:
+    if isinstance(v, sp.Symbol):
+        return 1, v
+    if isinstance(v, sp.Mul) and len(v.args) == 2 and v.args[0] == -1 and isinstance(v.args[1], sp.Symbol):
+        return -1, v.args[1]
+    return 1, None
+
+
+def _reaction_tex(symbol: sp.Symbol) -> str | None:
+    """The Newton–Euler step's name of a reaction unknown (tutgen.engine.planar_ne's ``R[pivot].x``,
+    ``R[slider].n``), as the step prints it: ``R_{\\mathrm{pivot},x}``, ``N_{\\mathrm{slider}}``; None
+    for any other symbol."""
+    m = re.fullmatch(r"R\[([A-Za-z_][A-Za-z0-9_]*)\]\.([xyzn])", symbol.name)
+    if m is None:
+        return None
+    joint = word_tex(m.group(1))
+    return f"N_{{{joint}}}" if m.group(2) == "n" else f"R_{{{joint},{m.group(2)}}}"
+
+
+def _face(d: Point, u: Point, size: tuple[float, float]) -> tuple[str, int]:
+    """The face of a block (slide direction ``u`` on the page, ``size`` along and across it) that a
+    line from its centre in the page direction ``d`` leaves by: ``("across", ±1)`` for the two
+    faces across the slide, ``("along", ±1)`` for the two along it."""
+    along = d[0] * u[0] + d[1] * u[1]
+    across = -d[0] * u[1] + d[1] * u[0]
+    if abs(along) * size[1] >= abs(across) * size[0]:
+        return ("across", 1 if along > 0 else -1)
+    return ("along", 1 if across > 0 else -1)
+
+
+def _slots(count: int, weight: bool) -> list[float]:
+    """Offsets along a face of ``count`` arrows, :data:`SLOT` apart: centred on the face, or, on the
+    face the weight crosses, beside its line (0) on alternate sides."""
+    if not weight:
+        return [round((i - (count - 1) / 2) * SLOT, 3) for i in range(count)]
+    return [round(SLOT * (i // 2 + 1) * (1 if i % 2 == 0 else -1), 3) for i in range(count)]
 
 
 def _on_one_line(a: Point, b: Point, c: Point, d: Point) -> bool:

@@ -11,12 +11,17 @@ import numpy as np
 
 from tutgen.figure.geometry import inside, overlaps
 from tutgen.figure.scene import Box, Circle, Label, Point, Polyline, Primitive, Stroke
-from tutgen.figure.texlabel import label_size
+from tutgen.figure.texlabel import PAD, label_size
 
 #: A label asked for: the names it stands for, its TeX, its anchor, the direction it prefers.
 Request = tuple[str, str, Point, Point]
 #: A label whose box ends farther than this from its anchor (cm) gets a leader line back to it.
 LEADER = 0.45
+#: Two labels' boxes (each already padded by :data:`tutgen.figure.texlabel.PAD`) keep at least this
+#: far apart (cm): boxes that only touch set two names a hair apart, which a reader takes for one.
+READ_GAP = 0.1
+#: A label's text (its box less the padding) keeps this clear of a pin's or a mass's disc (cm).
+DISC_GAP = 0.05
 
 
 def place_labels(
@@ -37,7 +42,13 @@ def place_labels(
     ink = ink_points(prims)
     boxes = np.zeros((0, 4))  # the placed labels' boxes, widened by a small gap
     obstacle_rows = np.array([[b.x0, b.y0, b.x1, b.y1] for b in obstacles]).reshape(-1, 4)
-    gap = 0.04
+    gap = READ_GAP
+    # what a reader sees under a label's text (its box less the padding): a pin or a mass's disc, a
+    # link's bar; each costs far more than a thin line, short of sitting on another label
+    discs = np.array([[p.center[0], p.center[1], p.radius + DISC_GAP] for p in prims if isinstance(p, Circle)]).reshape(
+        -1, 3
+    )
+    bars = ink_points([p for p in prims if isinstance(p, Polyline) and p.stroke is Stroke.BAR])
     for names, tex, anchor, direction in requests:
         w, h = label_size(tex)
         dx, dy = direction
@@ -57,8 +68,10 @@ def place_labels(
                 box = cand.box
                 clash = overlaps(box, boxes, gap)
                 if i == 0 and turn == 0:
-                    first_clash = clash
-                cost = 1000 * clash + 10 * overlaps(box, obstacle_rows, 0.0)
+                    first_clash = overlaps(box, boxes, 0.0)  # remarked on only where it covered one
+                text = Box(box.x0 + PAD, box.y0 + PAD, box.x1 - PAD, box.y1 - PAD)
+                cost = 1000 * clash + 100 * _discs_under(text, discs) + 1.0 * inside(text, bars)
+                cost += 10 * overlaps(box, obstacle_rows, 0.0)
                 cost += 0.05 * inside(box, ink) + 0.02 * (i + abs(turn))
                 if best is None or cost < best[0] - 1e-12:
                     best = (cost, cand)
@@ -80,6 +93,15 @@ def place_labels(
             if leader is not None:
                 leaders.append(leader)
     return placed
+
+
+def _discs_under(box: Box, discs: np.ndarray) -> int:
+    """How many of the discs (rows cx, cy, r) the box meets."""
+    if not len(discs):
+        return 0
+    nx = np.clip(discs[:, 0], box.x0, box.x1)
+    ny = np.clip(discs[:, 1], box.y0, box.y1)
+    return int(np.count_nonzero(np.hypot(nx - discs[:, 0], ny - discs[:, 1]) < discs[:, 2]))
 
 
 def _leader(anchor: Point, label: Label, placed: Sequence[Label]) -> Polyline | None:

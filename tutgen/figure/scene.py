@@ -118,4 +118,8 @@ class Drawing:
 
     @property
     def names(self) -> frozenset[str]:
-        return frozenset(lb.names for lb in self.labels)
+        """What the labels name; a force drawn as its components (``force:<name>/x``, ``/y``, see
+        :func:`tutgen.figure.freebody.components`) names the force itself too."""
+        names = {lb.names for lb in self.labels}
+        names |= {n.rsplit("/", 1)[0] for n in names if n.startswith("force:") and "/" in n}
+        return frozenset(names)

@@ -25,6 +25,14 @@ _WIDTH = {  # px, as the TikZ widths in points (1 pt = 1.333 px)
     Stroke.ARROW: 0.93,
 }
 _DASH = {Stroke.DASHED: "2.67 2", Stroke.AXIS: "5.33 2 1.07 2"}
+#: A label run's style (:func:`tutgen.figure.texlabel.svg_runs`) as (italic, bold), the way pdflatex
+#: sets it: ``\\mathbf`` upright bold, ``\\boldsymbol`` bold italic.
+_FONT_STYLE = {
+    "italic": (True, False),
+    "upright": (False, False),
+    "bold": (False, True),
+    "bolditalic": (True, True),
+}
 _FILL = {Fill.NONE: "none", Fill.WHITE: "#ffffff", Fill.BLACK: "#000000", Fill.GRAY: "#bfbfbf"}
 
 
@@ -83,7 +91,10 @@ def to_svg(drawing: Drawing, title: str = "") -> str:
                 shift = target
             if place != "base":
                 attrs.append(f'font-size="{_n(FONT_PX * 0.7)}"')
-            attrs.append(f'font-style="{"italic" if font == "italic" else "normal"}"')
+            italic, bold = _FONT_STYLE[font]
+            attrs.append(f'font-style="{"italic" if italic else "normal"}"')
+            if bold:
+                attrs.append('font-weight="bold"')
             spans.append(f"<tspan {' '.join(attrs)}>{escape(text)}</tspan>")
         out.append(
             f'<text x="{X(lb.at[0])}" y="{_n((b.y1 - lb.at[1]) * PX_PER_CM + 0.33 * FONT_PX)}" font-family="serif" '

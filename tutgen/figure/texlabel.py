@@ -25,9 +25,11 @@ _UNICODE = dict(
     )
 )
 _ACCENTS = {"dot", "ddot", "bar", "hat", "tilde", "vec"}
-_FONTS = {"mathrm", "text", "mathit", "mathbf"}
-_COMMANDS = set(_GREEK) | _ACCENTS | _FONTS
-_TOKEN = re.compile(r"\\([A-Za-z]+)|\\_|([A-Za-z0-9])|([_^{}'])|( )")
+#: The font commands and the SVG style of each (the PDF's: ``\\mathbf`` upright bold, ``\\boldsymbol``
+#: bold italic maths, ``\\mathrm`` and ``\\text`` upright, ``\\mathit`` italic).
+_FONTS = {"mathrm": "upright", "text": "upright", "mathit": "italic", "mathbf": "bold", "boldsymbol": "bolditalic"}
+_COMMANDS = set(_GREEK) | _ACCENTS | set(_FONTS)
+_TOKEN = re.compile(r"\\([A-Za-z]+)|\\_|([A-Za-z0-9])|([_^{}',])|( )")
 MAX_LABEL = 40
 
 #: Sizes in cm of the figure's maths (10 pt): an average glyph's width, a line's height.
@@ -78,7 +80,8 @@ def expr_tex(expr: sp.Expr, latex_of: dict[sp.Symbol, str]) -> str | None:
 
 
 def svg_runs(tex: str) -> list[tuple[str, str, str]]:
-    """The label as runs of (text, style, position) for SVG: style ``italic`` or ``upright``,
+    """The label as runs of (text, style, position) for SVG: style ``italic``, ``upright``, ``bold``
+    (upright bold, ``\\mathbf``) or ``bolditalic`` (``\\boldsymbol``), as pdflatex sets each;
     position ``base``, ``sub`` or ``sup``. Reads only the vocabulary of :func:`is_safe_tex`."""
     runs: list[tuple[str, str, str]] = []
     # a stack of (position, style, is-font-group) entered at each "{"
@@ -101,10 +104,12 @@ def svg_runs(tex: str) -> list[tuple[str, str, str]]:
         if m.group(4):
             continue
         cmd, ch, sym = m.group(1), m.group(2), m.group(3)
+        if font_next is not None and sym != "{" and cmd not in _FONTS and cmd not in _ACCENTS:
+            style, font_next = font_next, None  # an unbraced argument: \mathbf W, \boldsymbol\tau
         if m.group(0) == "\\_":
             runs.append(("_", style, place))
         elif cmd in _FONTS:
-            font_next = "upright" if cmd in ("mathrm", "text", "mathbf") else "italic"
+            font_next = _FONTS[cmd]
             continue
         elif cmd in _ACCENTS:
             accent = {
@@ -117,7 +122,13 @@ def svg_runs(tex: str) -> list[tuple[str, str, str]]:
             }[cmd]
             continue
         elif cmd in _UNICODE:
-            runs.append((_UNICODE[cmd] + (accent or ""), "upright" if cmd[0].isupper() else "italic", place))
+            # TeX sets capital Greek upright and small Greek italic; \mathbf makes only the capitals
+            # bold, \boldsymbol both (each in its own slant)
+            if cmd[0].isupper():
+                greek = "bold" if style in ("bold", "bolditalic") else "upright"
+            else:
+                greek = "bolditalic" if style == "bolditalic" else "italic"
+            runs.append((_UNICODE[cmd] + (accent or ""), greek, place))
             accent = None
         elif sym == "{":
             stack.append((place, font_next or style))
@@ -133,8 +144,12 @@ def svg_runs(tex: str) -> list[tuple[str, str, str]]:
             continue
         elif sym == "'":
             runs.append(("\u2032", "upright", place))
+        elif sym == ",":  # a subscript's separator (R_{pivot,x}), upright as TeX sets punctuation
+            runs.append((",", "upright", place))
         elif ch is not None:
-            runs.append((ch + (accent or ""), "upright" if ch.isdigit() else style, place))
+            # a digit is upright in maths, and bold only under a bold font
+            digit = "bold" if style in ("bold", "bolditalic") else "upright"
+            runs.append((ch + (accent or ""), digit if ch.isdigit() else style, place))
             accent = None
         if pending_used:
             pending = None

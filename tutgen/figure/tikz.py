@@ -75,6 +75,7 @@ def tikz_document(drawing: Drawing) -> str:
     return (
         "\\documentclass{article}\n"
         "\\ifdefined\\pdftrailerid\\pdftrailerid{}\\fi\n"
+        "\\usepackage{amsmath}\n"  # \\text and \\boldsymbol of the label vocabulary
         "\\usepackage{tikz}\n"
         "\\begin{document}\n"
         "\\setbox0=\\hbox{%\n" + to_tikz(drawing) + "}\n"
