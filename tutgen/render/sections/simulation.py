@@ -2,9 +2,10 @@
 plots and the energy check, from ``Derivation.simulation`` (made by tutgen/sim/solution.py before
 rendering; this module only lays it out).
 
-A plot is a block ``{"kind": "plot", "file": ..., "tex_name": ..., "caption": ...}``: ``file`` the
-PNG's name beside a Markdown or LaTeX solution, ``tex_name`` its name inside tutgen's own PDF compile
-(:func:`tex_files`; a .tex compiled elsewhere falls back to ``file``).
+A plot is a block ``{"kind": "plot", "file": ..., "tex_name": ..., "caption": ..., "tex_width": ...}``:
+``file`` the PNG's name beside a Markdown or LaTeX solution, ``tex_name`` its name inside tutgen's own
+PDF compile (:func:`tex_files`; a .tex compiled elsewhere falls back to ``file``), ``tex_width`` the
+width LaTeX sets it at.
 """
 
 from __future__ import annotations
@@ -47,8 +48,18 @@ def number_tex(x: float, digits: int = 4) -> str:
     return f"10^{{{exponent}}}" if mantissa == "1" else f"{mantissa} \\cdot 10^{{{exponent}}}"
 
 
+#: the plots' widths in a LaTeX document: the time plot is tall (q, q_dot, E stacked), the strip wide
+TEX_WIDTHS = {"plot": "0.7\\linewidth", "snapshots": "\\linewidth"}
+
+
 def _plot(name: str, kind: str) -> Block:
-    return {"kind": "plot", "file": name, "tex_name": TEX_NAMES[kind], "caption": CAPTIONS[kind]}
+    return {
+        "kind": "plot",
+        "file": name,
+        "tex_name": TEX_NAMES[kind],
+        "caption": CAPTIONS[kind],
+        "tex_width": TEX_WIDTHS[kind],
+    }
 
 
 def simulation(c: SolutionContext) -> dict[str, Any] | None:
