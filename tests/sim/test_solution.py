@@ -162,3 +162,16 @@ def test_a_solve_without_simulation_imports_neither_scipy_nor_matplotlib(tmp_pat
     )
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_a_markdown_sheet_shows_the_plots_beside_it(tmp_path: Path) -> None:
+    (tmp_path / "pendulum.yaml").write_text(PENDULUM, encoding="utf-8")
+    sheet = tmp_path / "sheet.yaml"
+    sheet.write_text("tutgen_sheet: 1\ntitle: Sheet\nproblems:\n  - spec: pendulum.yaml\n", encoding="utf-8")
+    out = tmp_path / "out"
+    result = CliRunner().invoke(app, ["sheet", str(sheet), "-o", str(out), "-f", "md"])
+    assert result.exit_code == 0, result.output
+    solutions = (out / "solutions.md").read_text(encoding="utf-8")
+    for name in ("figures/pendulum.simulation.png", "figures/pendulum.snapshots.png"):
+        assert f"(<{name}>)" in solutions and (out / name).read_bytes().startswith(b"\x89PNG")
+    assert "a numerical simulation of the motion" in (out / "questions.md").read_text(encoding="utf-8")
