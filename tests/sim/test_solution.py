@@ -120,7 +120,7 @@ def test_json_says_where_the_plots_are_and_reports_the_energy(tmp_path: Path) ->
 
 def test_latex_includes_the_plots_by_their_compile_names(tmp_path: Path) -> None:
     tex = solve(tmp_path, "tex").read_text(encoding="utf-8")
-    assert "\\includegraphics[width=0.7\\linewidth,height=0.5\\textheight,keepaspectratio]{simulation-plot.png}" in tex
+    assert "\\includegraphics[width=0.7\\linewidth,height=0.4\\textheight,keepaspectratio]{simulation-plot.png}" in tex
     assert "\\IfFileExists{pendulum.snapshots.png}" in tex  # beside a .tex compiled elsewhere
     assert (tmp_path / "out" / "pendulum.simulation.png").is_file()
 

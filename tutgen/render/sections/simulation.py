@@ -83,7 +83,7 @@ def simulation(c: SolutionContext) -> dict[str, Any] | None:
     sec["blocks"].append(para(*start, text(".")))
     if s.simulation is not None and s.simulation.inputs:
         params = {p.name: p for p in s.parameters}
-        shown = [f"{params[k].latex} = {tex(v)}" for k, v in s.simulation.inputs if k in params]
+        shown = [f"{params[k].latex} = {tex(c.num(v))}" for k, v in s.simulation.inputs if k in params]
         sec["blocks"].append(para(text("Inputs: "), math(",\\quad ".join(shown)), text(".")))
     for p in run.plots:
         sec["blocks"].append(_plot(p.name, p.kind))
