@@ -147,9 +147,10 @@ def test_missing_parameter_value_is_a_located_spec_error(tmp_path: Path) -> None
 
 
 @pytest.mark.slow
-def test_the_pdf_contains_the_plots(tmp_path: Path) -> None:
-    pdf = solve(tmp_path, "pdf").read_bytes()
+def test_the_pdf_contains_the_plots_and_is_the_same_bytes_twice(tmp_path: Path) -> None:
+    pdf = solve(tmp_path / "a", "pdf").read_bytes()
     assert pdf.count(b"/Subtype /Image") + pdf.count(b"/Subtype/Image") >= 2
+    assert solve(tmp_path / "b", "pdf").read_bytes() == pdf
 
 
 def test_a_solve_without_simulation_imports_neither_scipy_nor_matplotlib(tmp_path: Path) -> None:
