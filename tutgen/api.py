@@ -81,7 +81,12 @@ def _render(derivation: object, fmt: str, template_dir: Path | None) -> str | by
         from tutgen.figure.picture import picture_files
         from tutgen.render.pdf import compile_pdf
 
-        return compile_pdf(tex, files=picture_files([derivation.system]))  # the spec's own picture
+        files = picture_files([derivation.system])  # the spec's own picture
+        if derivation.simulation is not None:  # the plots of `ask: [simulation]`, by their names in the .tex
+            from tutgen.render.sections.simulation import tex_files
+
+            files.update(tex_files(derivation.simulation))
+        return compile_pdf(tex, files=files)
     from tutgen.render.markdown import render_markdown
 
     return render_markdown(derivation, template_dir)
@@ -170,11 +175,30 @@ def solve_and_derive(
         if errors:
             raise SpecErrors(errors)
         derivations = [derive_with_deadline(system, method, timeout) for system in systems]
+        derivations = simulate_asked(derivations, timeout)
         texts = []
         for path, d in zip(paths, derivations, strict=True):
             stage("rendering", f"{path.name} as {fmt}")
             texts.append(render(d, fmt, template_dir))
         return texts, derivations
+
+
+def simulate_asked(derivations: list[Derivation], timeout: float | None = None) -> list[Derivation]:
+    """Each derivation with the run of its `simulate` section when it asks for one (``ask:
+    [simulation]``, tutgen/sim/solution.py); scipy and matplotlib are imported only then."""
+    from tutgen.engine.steps import StepKind
+    from tutgen.limits import stage
+
+    if not any(d.has_step(StepKind.SIMULATION) for d in derivations):
+        return derivations
+    from tutgen.sim.solution import attach_simulation
+
+    out = []
+    for d in derivations:
+        if d.has_step(StepKind.SIMULATION):
+            stage("simulation", Path(d.system.source).name)
+        out.append(attach_simulation(d, timeout))
+    return out
 
 
 #: Used where the file system cannot be asked (``pathconf``): the limits of Linux and macOS.
@@ -280,14 +304,24 @@ def write_outputs(targets: list[Path], texts: list[str] | list[bytes] | list[str
             raise
 
 
+def simulation_files(derivation: Derivation | None, directory: Path) -> tuple[list[Path], list[bytes]]:
+    """The plots of a derivation's simulation (``ask: [simulation]``) as files in ``directory``: beside
+    a Markdown, LaTeX or JSON solution, which refer to them by name."""
+    if derivation is None or derivation.simulation is None:
+        return [], []
+    plots = derivation.simulation.plots
+    return [directory / p.name for p in plots], [p.png for p in plots]
+
+
 def figure_files(
     specs: list[Path], targets: list[Path], *, force: bool, derivations: Sequence[Derivation] | None = None
 ) -> tuple[list[Path], list[str | bytes]]:
     """The files a Markdown solution refers to, to be written beside it: the generated figure's SVG
     (``<spec>.figure.svg``), the free-body diagrams of its Newton–Euler step (``<spec>.fbd-<body>.svg``,
-    with ``derivations``, where that step is printed) and a copy of the spec's own picture
-    (``figure.file``, same relative path). Refuses to overwrite an existing file without ``force``, as
-    the solutions themselves."""
+    with ``derivations``, where that step is printed), the plots of its simulation (``ask:
+    [simulation]``: ``<spec>.simulation.png``, ``<spec>.snapshots.png``) and a copy of the spec's own
+    picture (``figure.file``, same relative path). Refuses to overwrite an existing file without
+    ``force``, as the solutions themselves."""
     from tutgen.figure.picture import read_picture
     from tutgen.figure.view import svg_file
     from tutgen.render.sections.newton_euler import free_bodies
@@ -304,15 +338,37 @@ def figure_files(
         for view in free_bodies(derivations[i]) if derivations is not None else []:
             paths.append(target.parent / view["svg"])
             contents.append(view["svg_text"])
+        paths_, pngs = simulation_files(derivations[i] if derivations is not None else None, target.parent)
+        paths += paths_
+        contents += pngs
         picture = system.figure.file if system.figure is not None else None
         if picture is not None and picture.kind.value != "pdf":
             copy = target.parent / picture.path
             if copy.resolve() != picture.resolved:
                 paths.append(copy)
                 contents.append(read_picture(system))  # checked again as it is opened
+    _refuse_overwrite(paths, specs, force)
+    return paths, contents
+
+
+def plot_files(
+    specs: list[Path], targets: list[Path], derivations: Sequence[Derivation], *, force: bool
+) -> tuple[list[Path], list[str | bytes]]:
+    """The simulation plots a LaTeX or JSON solution names, to be written beside it (a Markdown
+    solution's are among its :func:`figure_files`); refuses to overwrite as they do."""
+    paths: list[Path] = []
+    contents: list[str | bytes] = []
+    for target, d in zip(targets, derivations, strict=True):
+        more, pngs = simulation_files(d, target.parent)
+        paths += more
+        contents += pngs
+    _refuse_overwrite(paths, specs, force)
+    return paths, contents
+
+
+def _refuse_overwrite(paths: list[Path], specs: list[Path], force: bool) -> None:
     for path in paths:
         if _is_spec(path, specs):
             raise UsageError(f"refusing to overwrite the spec {path} with a figure; choose another -o")
         if path.exists() and not force:
             raise UsageError(f"{path} exists; add --force to overwrite it")
-    return paths, contents

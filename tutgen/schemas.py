@@ -318,6 +318,49 @@ _FIGURE = {
         },
     },
 }
+_STATE = {
+    "type": "object",
+    "additionalProperties": {
+        "type": "object",
+        "properties": {"q": {"type": "number"}, "qd": {"type": "number"}},
+        "required": ["q", "qd"],
+    },
+}
+#: `ask: [simulation]` (docs/json-output.md#simulation): the plots' files beside the .json and the run's numbers
+_SIMULATION = {
+    "type": "object",
+    "properties": {
+        "files": {"type": "object", "additionalProperties": {"type": "string"}},
+        "interval": {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2},
+        "reached": {"type": "number"},
+        "integrator": {
+            "type": "object",
+            "properties": {
+                "method": {"type": "string"},
+                "rtol": {"type": "number"},
+                "atol": {"type": "number"},
+                "steps": {"type": "integer"},
+            },
+        },
+        "samples": {"type": "integer"},
+        "inputs": {"type": "object", "additionalProperties": {"type": "string"}},
+        "initial": _STATE,
+        "final": _STATE,
+        "energy": {
+            "type": "object",
+            "properties": {
+                "initial": {"type": "number"},
+                "final": {"type": "number"},
+                "conservative": {"type": "boolean"},
+                "drift": {"type": ["number", "null"]},
+                "tolerance": {"type": "number"},
+                "check_passed": {"type": ["boolean", "null"]},
+            },
+        },
+        "stopped": {"type": ["string", "null"]},
+    },
+    "required": ["files", "interval", "integrator", "energy", "stopped"],
+}
 _CHECK = {
     "type": "object",
     "properties": {"name": {"type": "string"}, "passed": {"type": "boolean"}, "detail": {"type": "string"}},
@@ -337,6 +380,7 @@ def solution_schema() -> dict[str, Any]:
             "parameters": {"type": "object", "additionalProperties": {"type": ["number", "null"]}},
             "results": _RESULTS,
             "figure": _FIGURE,
+            "simulation": _SIMULATION,
             "remarks": {"type": "array", "items": {"type": "string"}},
             "checks": {"type": "array", "items": _CHECK},
         },

@@ -68,7 +68,25 @@ def test_sheet_writes_the_documented_layout(small: tuple[Path, Path]) -> None:
             assert f"variants/{v}/{doc}" in names
     figures = {f"figures/{p}.svg" for p in ("p03-cart-pendulum", "p06-two-prismatic", "p10-given-kinetic-energy")}
     assert figures <= names
-    assert len(names) == 4 + 3 + 1 + 3 * (3 * 3 + 4 + 3)
+    # p03 presents Newton-Euler: its two free bodies' SVGs beside each Markdown sheet (tutgen/sheet/assets.py)
+    fbds = {f"figures/p03-cart-pendulum.fbd-{body}.svg" for body in ("cart", "pendulum")}
+    assert fbds <= names and all(f"variants/{v}/{f}" in names for v in ("v001", "v002", "v003") for f in fbds)
+    assert len(names) == 4 + 3 + 2 + 1 + 3 * (3 * 3 + 4 + 3 + 2)
+
+
+def test_markdown_solution_sheets_show_the_free_bodies_written_beside_them(small: tuple[Path, Path]) -> None:
+    """The same free-body diagrams as `tutgen solve -f md` shows, each by a link that exists; a variant's
+    are drawn with its own numbers' problem, and each file is written once."""
+    import re
+
+    _, out = small
+    for sheet in [out / "solutions.md", *sorted(out.glob("variants/*/solutions.md"))]:
+        links = re.findall(r"!\[Free body: ([^]]*)\]\(<([^>]+)>\)", sheet.read_text(encoding="utf-8"))
+        assert links == [(b, f"figures/p03-cart-pendulum.fbd-{b}.svg") for b in ("cart", "pendulum")]
+        for _, link in links:
+            assert b"<svg" in (sheet.parent / link).read_bytes()[:400]
+    questions = (out / "questions.md").read_text(encoding="utf-8")
+    assert "Free body" not in questions
 
 
 def test_markdown_sheets_show_each_problems_figure_beside_it(small: tuple[Path, Path]) -> None:

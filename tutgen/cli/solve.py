@@ -80,7 +80,7 @@ def solve(
     Existing files are overwritten only with --force, and never a spec itself.
     A PDF is written only to a file: --format pdf needs -o.
     """
-    from tutgen.api import figure_files, plan_outputs, solve_and_derive, write_outputs
+    from tutgen.api import figure_files, plan_outputs, plot_files, solve_and_derive, write_outputs
     from tutgen.errors import UsageError
 
     if output is None and format is Format.pdf:
@@ -99,4 +99,7 @@ def solve(
     if format is Format.md:  # the figures beside the .md (tutgen/figure; docs/figures.md)
         figures, contents = figure_files(specs, targets, force=force, derivations=derivations)
         targets, texts = targets + figures, [*texts, *contents]
+    elif format in (Format.tex, Format.json):  # the plots of `ask: [simulation]` they name (docs/simulate.md)
+        plots, contents = plot_files(specs, targets, derivations, force=force)
+        targets, texts = targets + plots, [*texts, *contents]
     write_outputs(targets, texts)

@@ -219,6 +219,8 @@ def build_program(
     prog = derivation.program
     route = "sympy.cse of the derived entries"
     defs: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    c_mat = derivation.coriolis_matrix
+    c_mat_doc = "C(q, q_dot) with C q_dot the Coriolis vector, from the Christoffel symbols of H (n x n)."
     if prog is not None:
         # the recursive program gives H, C q_dot and G of the links and gravity; the springs' part of G
         # (which the serial route adds to its expanded G) is dU_springs/dq
@@ -227,21 +229,22 @@ def build_program(
         u_springs = sp.Add(*[e for _, e in derivation.spring_energies])
         springs = sp.ImmutableMatrix([sp.diff(u_springs, c.q) for c in coords])
         hm, c_vec, g_vec = prog.mass_matrix, prog.coriolis_vector, prog.gravity_vector + springs
+        # C from the program's H differentiated forward (tutgen/codegen/coriolis.py), not expanded
+        from tutgen.codegen.coriolis import program_coriolis_matrix
+
+        more, c_mat = program_coriolis_matrix(prog)
+        defs = (*defs, *more)
+        c_mat_doc = (
+            "C(q, q_dot) with C q_dot the Coriolis vector, from the Christoffel symbols of the first kind "
+            "of the program's H, differentiated forward (n x n)."
+        )
 
     results: list[tuple[str, str, tuple[str, ...], sp.MatrixBase, sp.MatrixBase | None]] = [
         ("mass_matrix", "H(q), the mass matrix (n x n).", ("q",), hm, None),
         ("coriolis_vector", "C(q, q_dot) q_dot, the Coriolis and centrifugal terms (n).", ("q", "qd"), c_vec, None),
     ]
-    if derivation.coriolis_matrix is not None and prog is None:
-        results.append(
-            (
-                "coriolis_matrix",
-                "C(q, q_dot) with C q_dot the Coriolis vector, from the Christoffel symbols of H (n x n).",
-                ("q", "qd"),
-                derivation.coriolis_matrix,
-                None,
-            )
-        )
+    if c_mat is not None:
+        results.append(("coriolis_matrix", c_mat_doc, ("q", "qd"), c_mat, None))
     results += [
         ("gravity_vector", "G(q) = dU/dq, gravity and springs (n).", ("q",), g_vec, None),
         (

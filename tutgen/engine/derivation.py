@@ -16,6 +16,7 @@ import sympy as sp
 from tutgen.engine.inertia import BodyInertia, BodyPrincipal
 from tutgen.engine.kinematics import BodyKinematics
 from tutgen.engine.steps import Step
+from tutgen.model.simulation import SimulationSummary
 from tutgen.model.system import Method, System
 
 if TYPE_CHECKING:  # newton_euler.py imports this module
@@ -95,6 +96,9 @@ class Derivation:
     # serial arms: the same H, C q_dot and G as a straight-line program of named intermediates
     # (tutgen.engine.recursive.NestedDynamics), printed instead of entries too long to read
     program: NestedDynamics | None = None
+    # `ask: [simulation]`: the run of the spec's `simulate` section, attached after the derivation by
+    # tutgen/sim/solution.py (the engine does not integrate); None until then, and when not asked
+    simulation: SimulationSummary | None = None
 
     def has_step(self, kind: str) -> bool:
         """Whether the worked solution has a step of this kind (a :class:`~tutgen.engine.steps.StepKind`)."""

@@ -56,6 +56,7 @@ class StepKind(StrEnum):
     MATRIX_FORM = "matrix_form"  # C, G and Q of H q_ddot + C + G = Q
     MASS_MATRIX_DERIVATIVES = "mass_matrix_derivatives"  # the non-zero dH_ij/dq_k
     CHRISTOFFEL = "christoffel"  # each symbol from its definition, then C as a vector
+    SIMULATION = "simulation"  # the equations of motion integrated numerically: plots, energy drift
 
 
 #: teaching order: every step comes after the steps it depends on (the serial arm's equations of
@@ -78,6 +79,8 @@ _WHY = {
     StepKind.MATRIX_FORM: "The equations of motion as H q_ddot + C + G = Q, with G = dU/dq.",
     StepKind.MASS_MATRIX_DERIVATIVES: "The Christoffel symbols are made of the derivatives of H's entries.",
     StepKind.CHRISTOFFEL: "Each Christoffel symbol from its definition; C is their contraction with the rates.",
+    StepKind.SIMULATION: "The equations of motion integrated numerically from the initial state: the "
+    "coordinates, their rates and the energy over time.",
 }
 
 _QUANTITY = {
@@ -93,6 +96,7 @@ _QUANTITY = {
     StepKind.MATRIX_FORM: "C, G, Q",
     StepKind.MASS_MATRIX_DERIVATIVES: "dH/dq",
     StepKind.CHRISTOFFEL: "Christoffel symbols and C",
+    StepKind.SIMULATION: "q(t), q_dot(t) and the energy",
 }
 
 
@@ -159,6 +163,7 @@ def _depends(system: System, methods: tuple[Method, ...], large: bool) -> dict[S
         K.MATRIX_FORM: tuple(form_needs),
         K.MASS_MATRIX_DERIVATIVES: (K.MASS_MATRIX,),
         K.CHRISTOFFEL: (K.MASS_MATRIX_DERIVATIVES,),
+        K.SIMULATION: (K.EQUATIONS_OF_MOTION,),  # what is integrated (the run itself: tutgen/sim/solution.py)
     }
 
 
@@ -177,6 +182,7 @@ _ASKED = {
     Ask.EQUATIONS_OF_MOTION: (StepKind.EQUATIONS_OF_MOTION,),
     Ask.MATRIX_FORM: (StepKind.MASS_MATRIX, StepKind.MATRIX_FORM),
     Ask.CHRISTOFFEL: (StepKind.CHRISTOFFEL,),
+    Ask.SIMULATION: (StepKind.SIMULATION,),
 }
 
 

@@ -37,3 +37,46 @@ class Simulation:
     def place(self, key: str) -> Location:
         """Where ``key`` ("q0.theta") was written, or the section itself."""
         return dict(self.places).get(key, self.origin)
+
+
+@dataclass(frozen=True)
+class SimulationPlot:
+    """One picture of a run placed in a worked solution: ``kind`` "plot" (q(t), q_dot(t), the
+    energy) or "snapshots" (the mechanism's poses), ``name`` the file's name beside the solution."""
+
+    kind: str
+    name: str
+    png: bytes
+
+
+@dataclass(frozen=True)
+class SimulationSummary:
+    """A run of the spec's `simulate` section as a worked solution shows it (``ask: [simulation]``):
+    the pictures, and the numbers the text and the JSON report. Built by tutgen/sim/solution.py, read
+    by the renderers; floats are SI (angles in radians).
+
+    ``initial`` and ``final`` give each coordinate (name, q, q_dot) at the start and at the last
+    sample; ``drift`` is the relative energy drift (None when energy need not be constant, or without
+    samples) and ``check_passed`` its verdict against ``tolerance`` (None when not checked);
+    ``stopped`` why the run ended before ``t_end`` (a singular H), else None.
+    """
+
+    plots: tuple[SimulationPlot, ...]
+    t_start: float
+    t_end: float
+    t_reached: float
+    method: str
+    rtol: float
+    atol: float
+    steps: int
+    samples: int
+    inputs: tuple[tuple[str, str], ...]
+    initial: tuple[tuple[str, float, float], ...]
+    final: tuple[tuple[str, float, float], ...]
+    energy_initial: float
+    energy_final: float
+    conservative: bool
+    drift: float | None
+    tolerance: float
+    check_passed: bool | None
+    stopped: str | None

@@ -199,6 +199,7 @@ class Ask(StrEnum):
     EQUATIONS_OF_MOTION = "equations_of_motion"
     MATRIX_FORM = "matrix_form"
     CHRISTOFFEL = "christoffel"
+    SIMULATION = "simulation"  # the plots of a run of the spec's `simulate:` section (never by default)
 
 
 class Method(StrEnum):

@@ -158,7 +158,7 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
         if d.newton_euler is not None and Ask.EQUATIONS_OF_MOTION in ask:
             results["newton_euler"] = _newton_euler(d.newton_euler, num)
 
-    return {
+    out = {
         "tutgen": __version__,
         "format": JSON_FORMAT_VERSION,
         "title": system.title,
@@ -170,6 +170,11 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
         "remarks": list(d.remarks),
         "checks": [{"name": c.name, "passed": c.passed, "detail": c.detail} for c in d.checks],
     }
+    if d.simulation is not None:  # additive, `ask: [simulation]` only: docs/json-output.md#simulation
+        from tutgen.render.sections.simulation import simulation_json
+
+        out["simulation"] = simulation_json(d.simulation)
+    return out
 
 
 def _free_bodies(d: Derivation) -> list[dict[str, Any]]:

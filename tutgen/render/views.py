@@ -27,6 +27,7 @@ from tutgen.render.sections.kinematics import kinematics
 from tutgen.render.sections.lagrange import equations_of_motion, lagrange_equations
 from tutgen.render.sections.matrix import christoffel_symbols, matrix_form
 from tutgen.render.sections.newton_euler import newton_euler
+from tutgen.render.sections.simulation import simulation
 from tutgen.render.wording import engine_parts
 from tutgen.spec.units import decimal_text, in_unit
 
@@ -51,6 +52,7 @@ BUILDERS: dict[StepKind, tuple[Builder, ...]] = {
     StepKind.MATRIX_FORM: (arm_table, matrix_form),
     StepKind.MASS_MATRIX_DERIVATIVES: (christoffel_symbols,),
     StepKind.CHRISTOFFEL: (christoffel_symbols,),
+    StepKind.SIMULATION: (simulation,),
 }
 
 

@@ -133,6 +133,7 @@ def substituted(derivation: Derivation, system: Any) -> VariantDerivation:
     if system.values != derivation.system.values:
         values = system.values
         fields["principal"] = tuple(body_principal(bi, values) for bi in derivation.inertia)
+        fields["simulation"] = None  # the run was of the other values: run again (tutgen/sim/solution.py)
     return VariantDerivation(**fields)
 
 
@@ -142,6 +143,7 @@ _memo: dict[Any, Any] = {}
 
 def build_job(shared: Shared, job: Job) -> JobResult:
     """Every file of one sheet (nominal or a variant); runs in a worker."""
+    from tutgen.sheet.assets import problem_assets
     from tutgen.sheet.render import answer_key, key_results, marking_key, problem_view, render_sheet
     from tutgen.sheet.variants import quantity_text, sample
 
@@ -152,6 +154,7 @@ def build_job(shared: Shared, job: Job) -> JobResult:
     start = time.perf_counter()
     views: list[dict[str, Any]] = []
     systems: list[Any] = []  # each problem's system as set (a variant's numbers), for its figure
+    assets: list[Any] = []  # each problem's free-body SVGs and simulation plots (tutgen/sheet/assets.py)
     files: list[tuple[str, str | bytes]] = []
     values_out: list[tuple[str, str, str]] = []
     rederived: list[str] = []
@@ -170,14 +173,17 @@ def build_job(shared: Shared, job: Job) -> JobResult:
                 d, values, fresh, concrete = variant_derivation(base, job.variant.id, shared.seed, shared.method)
                 if fresh:
                     t_derive += time.perf_counter() - t0
+                d = _simulated(d)
                 view = problem_view(base.number, d, solution=True)
                 marks = marking_key(d, base.marking, f"specs/{base.key}.yaml")
-                _memo[memo_key] = (view, key_results(d), concrete, fresh, d.system, marks)
-            view, results, concrete, fresh, system, marks = _memo[memo_key]
+                extra = problem_assets(base.key, base.number, d, shared.formats)
+                _memo[memo_key] = (view, key_results(d), concrete, fresh, d.system, marks, extra)
+            view, results, concrete, fresh, system, marks, extra = _memo[memo_key]
             if fresh:
                 rederived.append(base.key)
             views.append(view)
             systems.append(system)
+            assets.append(extra)
             params = {p.name: p for p in base.derivation.system.parameters}
             values_out += [(base.key, n, quantity_text(params[n], v)) for n, v in values.items()]
             files.append((f"{prefix}specs/{base.key}.yaml", concrete))
@@ -188,13 +194,19 @@ def build_job(shared: Shared, job: Job) -> JobResult:
         derivations = [substituted(b.derivation, b.derivation.system) for b in shared.problems]
         views = [problem_view(b.number, d, solution=True) for b, d in zip(shared.problems, derivations, strict=True)]
         systems = [d.system for d in derivations]
+        pairs = zip(shared.problems, derivations, strict=True)
+        assets = [problem_assets(b.key, b.number, d, shared.formats) for b, d in pairs]
+    views = [a.view(v, md=False) for a, v in zip(assets, views, strict=True)]  # the plots' names on the sheet
     figures = _figures(shared, systems) if "md" in shared.formats else {}
     context = {**header, "problems": views}
     for kind in ("questions", "solutions"):
         tex = None
         for fmt in shared.formats:
             if fmt == "md":
-                md_views = [_md_figure(v, figures.get(b.key)) for b, v in zip(shared.problems, views, strict=True)]
+                md_views = [
+                    _md_figure(a.view(v, md=True), figures.get(b.key))
+                    for b, v, a in zip(shared.problems, views, assets, strict=True)
+                ]
                 files.append((f"{prefix}{kind}.md", render_sheet({**context, "problems": md_views}, kind, "md")))
             else:
                 tex = tex if tex is not None else render_sheet(context, kind, "tex")
@@ -204,9 +216,12 @@ def build_job(shared: Shared, job: Job) -> JobResult:
                     from tutgen.figure.picture import picture_files
                     from tutgen.render.pdf import compile_pdf
 
-                    pdf = compile_pdf(tex, files=picture_files(systems))  # the problems' own pictures
+                    inputs = picture_files(systems)  # the problems' own pictures, and their simulations' plots
+                    inputs.update(f for a in assets for f in a.tex_files)
+                    pdf = compile_pdf(tex, files=inputs)
                     files.append((f"{prefix}{kind}.pdf", pdf))
     files += [(f"{prefix}{name}", svg) for name, svg in figures.values()]
+    files += [(f"{prefix}{name}", content) for a in assets for name, content in a.files]
     total = time.perf_counter() - start
     return JobResult(tuple(files), tuple(values_out), tuple(rederived), t_derive, total - t_derive)
 
@@ -238,13 +253,19 @@ def _md_figure(view: dict[str, Any], figure: tuple[str, str] | None) -> dict[str
     """A problem's view for a Markdown sheet: its figure by the sheet's own relative path. The spec's own
     picture (``figure.file``) is relative to the spec, not to the sheet, so it is left to the LaTeX sheets."""
     shown = {**view["figure"], "generated": figure is not None, "svg": figure[0] if figure else "", "file_md": False}
-    # the Newton–Euler step's free-body diagrams are TikZ in the LaTeX sheets; a Markdown sheet would need
-    # their SVGs in figures/, which file_names cannot plan before the derivations: left out here
-    solution = view["solution"]
-    sections = [
-        {**sec, "blocks": [b for b in sec["blocks"] if b["kind"] != "freebody"]} for sec in solution["sections"]
-    ]
-    return {**view, "figure": shown, "solution": {**solution, "sections": sections}}
+    # the Newton–Euler step's free-body diagrams: their SVGs in figures/ (tutgen/sheet/assets.py)
+    return {**view, "figure": shown}
+
+
+def _simulated(d: Derivation) -> Derivation:
+    """``d`` with the run of its `simulate` section, when it asks for one (``ask: [simulation]``)."""
+    from tutgen.engine.steps import StepKind
+
+    if not d.has_step(StepKind.SIMULATION) or d.simulation is not None:
+        return d
+    from tutgen.sim.solution import attach_simulation
+
+    return attach_simulation(d)
 
 
 def derive_problems(
@@ -254,7 +275,7 @@ def derive_problems(
     from tutgen.engine.pipeline import derive_with_deadline
 
     start = time.perf_counter()
-    derivations = [derive_with_deadline(p.system, method, timeout) for p in sheet.problems]
+    derivations = [_simulated(derive_with_deadline(p.system, method, timeout)) for p in sheet.problems]
     return derivations, time.perf_counter() - start
 
 
@@ -317,10 +338,21 @@ def _index(variants: Sequence[Variant], results: Sequence[JobResult]) -> str:
     return buf.getvalue()
 
 
-def file_names(sheet: Sheet, variants: Sequence[Variant], formats: Sequence[str]) -> list[str]:
-    """The files :func:`build_sheet` makes, in its order (known before anything is derived)."""
+def file_names(
+    sheet: Sheet,
+    variants: Sequence[Variant],
+    formats: Sequence[str],
+    derivations: Sequence[Derivation] | None = None,
+) -> list[str]:
+    """The files :func:`build_sheet` makes, in its order: before anything is derived, all but the
+    problems' free-body diagrams and simulation plots, which ``derivations`` (each problem's, as
+    :func:`derive_problems` gives them) add (tutgen/sheet/assets.py)."""
+    from tutgen.sheet.assets import asset_names
+
     fmts = [f for f in FORMATS if f in formats]
     figures = [figure_name(p.key) for p in sheet.problems if has_figure(p.system)] if "md" in fmts else []
+    for p, d in zip(sheet.problems, derivations or (), strict=False):
+        figures += asset_names(p.key, d, fmts)
     names = [f"{kind}.{fmt}" for kind in ("questions", "solutions") for fmt in fmts] + figures
     for v in variants:
         prefix = f"variants/{v.id}/"

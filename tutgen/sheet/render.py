@@ -40,6 +40,7 @@ ASKED = {
     Ask.EQUATIONS_OF_MOTION: "the equations of motion",
     Ask.MATRIX_FORM: "the matrix form $H(q)\\ddot q + C(q,\\dot q) + G(q) = Q$",
     Ask.CHRISTOFFEL: "the Christoffel symbols",
+    Ask.SIMULATION: "a numerical simulation of the motion: $q(t)$, $\\dot q(t)$ and the energy",
 }
 
 

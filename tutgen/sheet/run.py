@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import contextlib
 import ctypes
+import dataclasses
 import errno
 import fcntl
 import os
@@ -29,6 +30,7 @@ import tempfile
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from tutgen.errors import SpecError, SpecErrors, UsageError
 from tutgen.sheet.model import WINDOWS_DEVICES, Sheet
@@ -110,6 +112,20 @@ def plan_sheet(
     inputs = (sheet.path, *(p.path for p in sheet.problems), *([students] if students else []))
     check_existing(out, inputs, force=force)
     return SheetPlan(sheet, out, tuple(formats), chosen, targets, force, inputs)
+
+
+def replanned(plan: SheetPlan, derivations: Sequence[Any]) -> SheetPlan:
+    """``plan`` with every file the derived problems add (their free-body diagrams and simulation
+    plots, tutgen/sheet/assets.py), checked as the first plan was, before anything is built."""
+    from tutgen.api import check_output_path
+    from tutgen.sheet.build import file_names
+
+    names = file_names(plan.sheet, plan.variants, plan.formats, derivations)
+    check_names(names)
+    targets = tuple(plan.out / name for name in names)
+    for target in targets:
+        check_output_path(target)
+    return dataclasses.replace(plan, targets=targets)
 
 
 def check_names(names: Sequence[str]) -> None:
@@ -341,6 +357,7 @@ def run_sheet(
     with output_lock(plan.out):
         with deadline(timeout):
             derivations, derive_seconds = derive_problems(plan.sheet, method, timeout)
+            plan = replanned(plan, derivations)  # with the free-body diagrams and plots the derivations make
             stage("rendering", "the sheets")
             executor = make_executor(workers, scheduler)
             try:

@@ -125,9 +125,19 @@ def snapshots_png(result: SimulationResult, system: System, values: dict) -> byt
     allpts = np.array([p for frame in frames for line in frame for p in line])
     lo, hi = allpts.min(axis=0), allpts.max(axis=0)
     pad = 0.08 * float(max(hi[a] - lo[a], hi[b] - lo[b]) or 1.0)
-    # panels as tall as the mechanism's extent needs at 2 inches wide (between 1.2 and 4 inches)
+    # panels as tall as the mechanism's extent needs at their width (between 1.2 and 4 inches), and
+    # the figure as tall as its panels and their titles and tick labels: no empty band above or below
     aspect = float((hi[b] - lo[b] + 2 * pad) / max(hi[a] - lo[a] + 2 * pad, 1e-12))
-    fig = _figure(2.0 * len(picks), min(4.0, max(1.2, 2.0 * aspect)) + 0.9)
+    n = len(picks)
+    left, right, wspace = 0.6, 0.1, 0.3  # inches, and the gap as a fraction of a panel's width
+    panel = (2.0 * n - left - right) / (n + wspace * (n - 1))
+    panel_height = min(4.0, max(1.2, panel * aspect))
+    top, bottom = 0.35, 0.5
+    height = panel_height + top + bottom
+    fig = _figure(2.0 * n, height)
+    fig.subplots_adjust(
+        left=left / (2.0 * n), right=1 - right / (2.0 * n), top=1 - top / height, bottom=bottom / height, wspace=wspace
+    )
     axes = fig.subplots(1, len(picks), squeeze=False)[0]
     axis_names = "xyz"
     for ax, k, frame in zip(axes, picks, frames, strict=True):

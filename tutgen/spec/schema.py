@@ -580,6 +580,7 @@ AskItem = Literal[
     "equations_of_motion",
     "matrix_form",
     "christoffel",
+    "simulation",
 ]
 
 MethodItem = Literal["lagrange", "newton_euler"]

@@ -11,7 +11,9 @@ def build_ask(ctx: Context, dynamic: bool) -> frozenset[Ask]:
     spec that has nothing that moves, ``dynamic`` False).
 
     An item that does not apply is a problem at its place: anything but `inertia` without coordinates
-    (nothing moves), `inertia` without bodies (a system given by its energy).
+    (nothing moves), `inertia` without bodies (a system given by its energy), `simulation` without a
+    `simulate` section that gives every coordinate its initial value. `simulation` is never asked by
+    default: it runs an integration (docs/simulate.md).
     """
     if ctx.doc.ask is not None:
         # coordinates set aside for a shape error (already reported) may be what is missing: no cascade
@@ -31,12 +33,33 @@ def build_ask(ctx: Context, dynamic: bool) -> frozenset[Ask]:
                     "`inertia` needs bodies, and the spec gives its energy (`energy`) instead; expected "
                     "the bodies, or no `inertia` in `ask`",
                 )
+            elif a is Ask.SIMULATION and (missing := _without_initial_value(ctx)) is not None:
+                ctx.error(("ask", i), missing[0], missing[1])
             else:
                 asked.add(a)
         return frozenset(asked)
     if not dynamic:
         return frozenset({Ask.INERTIA})
-    everything = set(Ask)
+    everything = set(Ask) - {Ask.SIMULATION}
     if not ctx.doc.bodies:
         everything.discard(Ask.INERTIA)
     return frozenset(everything)
+
+
+def _without_initial_value(ctx: Context) -> tuple[str, str] | None:
+    """Why `ask: [simulation]` cannot run (message, hint), or None: the plots of the worked solution
+    are a run of the spec's own `simulate` section, so it must hold every coordinate's `q0`."""
+    sim = ctx.doc.simulate
+    if sim is None:
+        return (
+            "`simulation` needs the spec's `simulate` section, and the spec has none; expected the initial "
+            "values to start from",
+            "add e.g. `simulate: {t: [0, 10], q0: {" + ", ".join(f"{c}: 0.5" for c in ctx.coords) + "}}`",
+        )
+    missing = [c for c in ctx.coords if c not in sim.q0]
+    if missing:
+        return (
+            f"`simulation` needs every coordinate's initial value in `simulate.q0`; missing: {', '.join(missing)}",
+            "add e.g. `q0: {" + ", ".join(f"{c}: 0.5" for c in missing) + "}` to `simulate`",
+        )
+    return None
