@@ -113,14 +113,15 @@ def check(
     from tutgen.check.report import plan_reports, render_report, write_reports
     from tutgen.check.run import check as run_check
     from tutgen.errors import SpecErrors
-    from tutgen.spec.loader import read_stdin
+    from tutgen.spec.loader import load_yaml_file
+    from tutgen.spec.stdin import STDIN
 
     refuse_second_stdin([spec, *answers, key])
     refuse_stdout("--junit", junit, "standard output holds the report")
     refuse_stdout("--summary", summary, "standard output holds the report")
     if any(is_stdio(a) for a in answers):
         try:  # read here, once, not by the marking process that forks for the file
-            read_stdin()
+            load_yaml_file(STDIN)
         except SpecErrors:
             pass  # that process reports it, as the file's error
     targets = plan_reports(spec, [*answers, *([key] if key else [])], junit=junit, summary=summary)

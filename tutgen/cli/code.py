@@ -53,13 +53,15 @@ def code(
     Common subexpressions are shared; parameters with a value in the spec are defaults. Only
     declared names reach the code (a keyword of the language is renamed, as the header says).
     """
-    from tutgen.api import write_outputs
+    from tutgen.api import check_output_path, write_outputs
     from tutgen.codegen.run import code_for_spec, plan_code_output
 
     if output is not None and is_stdio(output):
         output = None
-    if output is not None and (Path(output).is_dir() or output.endswith("/")):
-        refuse_unnamed(spec, "-o DIR names the file after the spec")
+    if output is not None and is_stdio(spec):
+        check_output_path(Path(output))
+        if Path(output).is_dir() or output.endswith("/"):
+            refuse_unnamed(spec, "-o DIR names the file after the spec")
     target = plan_code_output(spec, output, lang.value, force=force) if output is not None else None
     text = code_for_spec(spec, lang.value, timeout=timeout or None, linear=linear)
     if target is None:

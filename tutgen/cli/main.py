@@ -46,6 +46,9 @@ def main(
     """
     set_debug(debug)
     install_signal_handlers()
+    stdin = sys.modules.get("tutgen.spec.stdin")
+    if stdin is not None:  # stdin ('-') is read once per command: a new command reads it afresh
+        stdin.forget_stdin()
 
 
 app.command(name="solve", cls=Command)(solve.solve)

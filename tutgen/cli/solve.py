@@ -92,7 +92,7 @@ def solve(
     A PDF is written only to a file: --format pdf needs -o.
     SPEC '-' is read from standard input (errors at <stdin>:line:col), and -o - is standard output.
     """
-    from tutgen.api import figure_files, plan_outputs, solve_and_derive, write_outputs
+    from tutgen.api import check_output_path, figure_files, plan_outputs, solve_and_derive, write_outputs
     from tutgen.errors import UsageError
 
     refuse_second_stdin(specs)
@@ -103,9 +103,10 @@ def solve(
         raise UsageError("several specs need an output directory: add -o DIR")
     if not to_stdout:
         assert output is not None
-        if len(specs) > 1 or Path(output).is_dir() or output.endswith("/"):
-            for spec in specs:
-                refuse_unnamed(spec, "each file in -o DIR is named after its spec")
+        if any(is_stdio(spec) for spec in specs):
+            check_output_path(Path(output))
+            if len(specs) > 1 or Path(output).is_dir() or output.endswith("/"):
+                refuse_unnamed("-", "each file in -o DIR is named after its spec")
         plan_outputs(specs, output, format.value, force=force)  # refuse early, before the slow part
     chosen = method.value if method is not None else None
     texts, derivations = solve_and_derive(specs, format.value, chosen, template_dir, timeout=timeout)

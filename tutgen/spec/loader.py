@@ -20,7 +20,6 @@ from __future__ import annotations
 import codecs
 import os
 import re
-import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,19 +44,17 @@ from yaml.scanner import Scanner
 
 from tutgen.errors import Location, SpecError, SpecErrors
 from tutgen.spec.scalars import core_value
+from tutgen.spec.stdin import STDIN, STDIN_NAME, read_stdin
 
 __all__ = [
     "MAX_ALIASES",
     "MAX_DEPTH",
     "MAX_FILE_BYTES",
     "MAX_NODES",
-    "STDIN",
-    "STDIN_NAME",
     "KeyPath",
     "SourceMap",
     "load_yaml_file",
     "load_yaml_text",
-    "read_stdin",
 ]
 
 #: Largest spec file accepted, in bytes (1 MiB).
@@ -68,12 +65,6 @@ MAX_NODES: int = 100_000
 MAX_DEPTH: int = 64
 #: Most alias uses (``*name``) accepted in one file.
 MAX_ALIASES: int = 1_000
-
-#: The path that means standard input, as in most command-line tools (``tutgen solve -``); a file
-#: called ``-`` is still read as ``./-``.
-STDIN: str = "-"
-#: How errors of a document read from standard input name it: ``<stdin>:line:col``.
-STDIN_NAME: str = "<stdin>"
 
 #: Where a value sits in the loaded data: mapping keys (str) and list indices (int), from the root.
 KeyPath = tuple[str | int, ...]
@@ -763,12 +754,13 @@ def load_yaml_file(path: str | Path) -> tuple[Any, SourceMap]:
 
     The file must be UTF-8 (a byte-order mark is fine) and at most ``MAX_FILE_BYTES`` long; the size is
     checked before the file is read in full. Locations name the file as ``str(path)``; the path ``-``
-    (:data:`STDIN`) is standard input (:func:`read_stdin`), located as ``<stdin>``.
+    (:data:`tutgen.spec.stdin.STDIN`) is standard input, read once (:func:`tutgen.spec.stdin.read_stdin`)
+    and located as ``<stdin>``.
 
     Raises :class:`~tutgen.errors.SpecErrors`, also when the file cannot be read.
     """
     if str(path) == STDIN:
-        return _load_bytes(read_stdin(), STDIN_NAME)
+        return _load_bytes(read_stdin(MAX_FILE_BYTES + 1), STDIN_NAME)
     name = str(path)
     try:
         with open(path, "rb") as handle:
@@ -779,26 +771,6 @@ def load_yaml_file(path: str | Path) -> tuple[Any, SourceMap]:
         reason = err.strerror or str(err)
         raise SpecErrors([SpecError(Location(name), f"cannot read file: {reason}")]) from None
     return _load_bytes(data, name)
-
-
-#: Standard input as last read: the stream and its bytes. It is read once per stream (a spec validated
-#: and then derived, or an answers file read again in a forked marking process, comes from this copy);
-#: keeping the stream itself (not its id) lets a test's replaced ``sys.stdin`` be read afresh.
-_stdin_read: list[tuple[object, bytes]] = []
-
-
-def read_stdin() -> bytes:
-    """Standard input's bytes (at most ``MAX_FILE_BYTES + 1``), read on the first call for the current
-    ``sys.stdin`` and the same bytes on every later one; SpecErrors at ``<stdin>`` if it cannot be read."""
-    stream = sys.stdin
-    if _stdin_read and _stdin_read[0][0] is stream:
-        return _stdin_read[0][1]
-    try:
-        data = stream.buffer.read(MAX_FILE_BYTES + 1)
-    except (OSError, AttributeError, ValueError) as err:  # closed, or not a byte stream
-        raise SpecErrors([SpecError(Location(STDIN_NAME), f"cannot read standard input: {err}")]) from None
-    _stdin_read[:] = [(stream, data)]
-    return data
 
 
 def _load_bytes(data: bytes, name: str) -> tuple[Any, SourceMap]:
