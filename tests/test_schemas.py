@@ -334,3 +334,24 @@ def test_the_spec_schema_takes_twelve_coordinates_and_plain_names() -> None:
     doc = _with(_p02(), "coordinates", {f"q{i}": None for i in range(12)})
     assert errors("spec", doc) == []
     assert errors("spec", _with(_p02(), "parameters", "theta_dot2", {"value": 1})) == []
+
+
+def test_a_sheets_answer_keys_and_marking_keys_fit_their_schemas(tmp_path: Any) -> None:
+    """What `tutgen sheet` writes for a variant: its spec, its answer key (an answers file that
+    `tutgen check` marks right) and its marking key."""
+    from typer.testing import CliRunner
+
+    from tutgen.cli.main import app
+
+    sheet = tmp_path / "sheet.yaml"
+    sheet.write_text(
+        f"title: One\nproblems:\n  - spec: {SPECS / 'tutorial-1' / 'p03-cart-pendulum.yaml'}\n"
+        "    vary:\n      m1: {range: [1, 5], step: 0.5, unit: kg}\n",
+        encoding="utf-8",
+    )
+    result = CliRunner().invoke(app, ["sheet", str(sheet), "-o", str(tmp_path / "out"), "-n", "1", "-j", "1", "-q"])
+    assert result.exit_code == 0, result.output
+    variant = tmp_path / "out" / "variants" / "v001"
+    assert errors("answers", _yaml(variant / "key-p03-cart-pendulum.yaml")) == []
+    assert errors("key", _yaml(variant / "marking-p03-cart-pendulum.yaml")) == []
+    assert errors("spec", _yaml(variant / "specs" / "p03-cart-pendulum.yaml")) == []

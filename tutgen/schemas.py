@@ -346,10 +346,10 @@ def _result_key(what: str) -> dict[str, Any]:
 def answers_schema() -> dict[str, Any]:
     answer = {
         "description": "An answer: an expression in the spec grammar, a number, a list (vector, matrix) "
-        "or a mapping (equations of motion by coordinate, entries by name).",
+        "or a mapping (equations of motion by coordinate, entries by name); true/false and null are "
+        "read too (a sheet's answer key copies the results, `agrees_with_lagrange: true` among them).",
         "anyOf": [
-            {"type": "string"},
-            {"type": "number"},
+            {"type": ["string", "number", "boolean", "null"]},
             {"type": "array", "items": {"$ref": "#/$defs/answer"}},
             {"type": "object", "additionalProperties": {"$ref": "#/$defs/answer"}},
         ],
