@@ -336,6 +336,7 @@ def test_the_spec_schema_takes_twelve_coordinates_and_plain_names() -> None:
     assert errors("spec", _with(_p02(), "parameters", "theta_dot2", {"value": 1})) == []
 
 
+@pytest.mark.slow  # a sheet with one variant: 6 s
 def test_a_sheets_answer_keys_and_marking_keys_fit_their_schemas(tmp_path: Any) -> None:
     """What `tutgen sheet` writes for a variant: its spec, its answer key (an answers file that
     `tutgen check` marks right) and its marking key."""
