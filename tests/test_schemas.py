@@ -104,3 +104,255 @@ def test_every_example_names_its_schema_for_editors(path: Any) -> None:
     assert first.startswith("# yaml-language-server: $schema=")
     target = (path.parent / first.split("$schema=", 1)[1]).resolve()
     assert target == (ROOT / "schemas" / f"{kind}.schema.json").resolve()
+
+
+# --- the answers file and the marking key ---
+
+ANSWERS = sorted((ROOT / "tests" / "check" / "answers").glob("*-printed.yaml"))
+KEYS = sorted((ROOT / "tests" / "check" / "answers").glob("*-key.yaml"))
+
+
+def _yaml(path: Any) -> Any:
+    return yaml.safe_load(path.read_text(encoding="utf-8"))
+
+
+@pytest.mark.parametrize("path", ANSWERS, ids=lambda p: p.stem)
+def test_every_answers_file_of_the_repository_fits_the_answers_schema(path: Any) -> None:
+    assert errors("answers", _yaml(path)) == []
+
+
+@pytest.mark.parametrize("path", KEYS, ids=lambda p: p.stem)
+def test_every_marking_key_of_the_repository_fits_the_key_schema(path: Any) -> None:
+    assert errors("key", _yaml(path)) == []
+
+
+def _reader_refuses(reader: Any, text: str, tmp_path: Any) -> bool:
+    """Whether the file's reader reports an error for ``text`` (raised, or kept for the marking)."""
+    from tutgen.errors import SpecErrors
+
+    path = tmp_path / "file.yaml"
+    path.write_text(text, encoding="utf-8")
+    try:
+        read = reader(path)
+    except SpecErrors:
+        return True
+    return bool(getattr(read, "errors", ()))
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "tolerance: {rel_tol: 0.5}\n",  # tolerances are the instructor's
+        "rel_tol: 0.5\n",
+        "H: [[m]]\n",  # a textbook letter, not a result key
+        "mass_matrx: [[m]]\n",
+        "student: true\n",
+        "- kinetic_energy: m\n",  # not a mapping
+    ],
+    ids=["tolerance", "rel-tol", "letter", "misspelt", "student-bool", "list"],
+)
+def test_the_answers_schema_refuses_what_the_reader_refuses(text: str, tmp_path: Any) -> None:
+    from tutgen.check.answers import read_answers
+
+    assert _reader_refuses(read_answers, text, tmp_path)
+    assert errors("answers", yaml.safe_load(text)) != []
+
+
+def test_the_answers_schema_takes_the_forms_students_write(tmp_path: Any) -> None:
+    from tutgen.check.answers import read_answers
+
+    text = (
+        "student: 1234\nspec: p05.yaml\nkinetic_energy: m*v**2/2\nmass_matrix[1,2]: 0\n"
+        "lagrange_terms.theta.dL_dq: -m*g*l*sin(theta)\nequations_of_motion: {theta: 'tau = m*l**2*theta_ddot'}\n"
+        "bodies.link1.inertia_tensor: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]\n"
+    )
+    assert not _reader_refuses(read_answers, text, tmp_path)
+    assert errors("answers", yaml.safe_load(text)) == []
+    assert errors("answers", None) == []  # an empty file answers nothing: every item missing
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "ask: []\n",
+        "ask: [mass_matrx]\n",
+        "tolerance: {rel_tol: -1}\n",
+        "tolerance: {rel: 0.1}\n",
+        "significant_figures: 16\n",
+        "items: {mass_matrix: {scaling: maybe}}\n",
+        "tolerances: {}\n",
+    ],
+    ids=["empty-ask", "unknown-ask", "negative", "unknown-tolerance", "figures", "scaling", "unknown-key"],
+)
+def test_the_key_schema_refuses_what_the_reader_refuses(text: str, tmp_path: Any) -> None:
+    from tutgen.check.key import read_key
+
+    assert _reader_refuses(read_key, text, tmp_path)
+    assert errors("key", yaml.safe_load(text)) != []
+
+
+# --- the JSON tutgen check and tutgen simulate write ---
+
+P04 = SPECS / "tutorial-1" / "p04-rp-arm.yaml"
+
+
+@pytest.fixture
+def p04_check(monkeypatch: pytest.MonkeyPatch, tmp_path: Any) -> Any:
+    """A real `tutgen check` of problem 4 (derived from the session cache) with a right, a wrong and an
+    invalid answers file: its JSON report and JSON summary."""
+    import tutgen.engine.pipeline
+    from tutgen.check.report import render_json, render_summary
+    from tutgen.check.run import check
+
+    solved(str(P04))
+    monkeypatch.setattr(tutgen.engine.pipeline, "derive", lambda system, *_, **__: solved(system.source)[1])
+    files = {
+        "right.yaml": "student: Ada\nkinetic_energy: m*(r**2*theta_dot**2 + r_dot**2)/2\n",
+        "wrong.yaml": "kinetic_energy: m*r**2*theta_dot**2/2\nmass_matrix: [[m*r^2, 0], [0, 2*m]]\n",
+        "bad.yaml": "kinetic_energy: [\n",
+    }
+    for name, text in files.items():
+        (tmp_path / name).write_text(text, encoding="utf-8")
+    run = check(P04, [tmp_path / n for n in files], jobs=1)
+    return json.loads(render_json(run)), json.loads(render_summary(run, "json"))
+
+
+def test_the_check_report_and_summary_fit_their_schemas(p04_check: Any) -> None:
+    report, summary = p04_check
+    assert [f["status"] for f in report["files"]] == ["fail", "fail", "invalid"]  # every branch is there
+    assert report["format"] == summary["format"] == 1
+    assert errors("check", report) == []
+    assert errors("summary", summary) == []
+
+
+@pytest.mark.parametrize(
+    ("where", "value"),
+    [
+        (("format",), 2),
+        (("files", 0, "status"), "great"),
+        (("files", 0, "items", 0, "entries", 0, "status"), "nearly"),
+        (("summary", "files"), -1),
+        (("files", 0, "counts", "correct"), "one"),
+    ],
+)
+def test_the_check_schema_refuses_a_broken_report(p04_check: Any, where: tuple[Any, ...], value: Any) -> None:
+    report = copy.deepcopy(p04_check[0])
+    target = report
+    for key in where[:-1]:
+        target = target[key]
+    target[where[-1]] = value
+    assert errors("check", report) != []
+    del report["format"]
+    assert errors("check", report) != []
+
+
+def test_the_simulation_json_fits_its_schema(monkeypatch: pytest.MonkeyPatch, tmp_path: Any) -> None:
+    import tutgen.engine.pipeline
+    from tutgen.sim.files import write_simulation
+    from tutgen.sim.run import Settings
+
+    spec = SPECS / "tutorial-1" / "p02-pivoted-rod.yaml"
+    solved(str(spec))
+    monkeypatch.setattr(tutgen.engine.pipeline, "derive", lambda system, *_, **__: solved(system.source)[1])
+    settings = Settings(values={}, q0={"theta": "10deg"}, qd0={}, t_end=0.5, samples=11, method="auto")
+    write_simulation(spec, tmp_path, settings, plots=False, force=False)
+    (path,) = tmp_path.glob("*.json")
+    doc = json.loads(path.read_text(encoding="utf-8"))
+    assert doc["format"] == 1 and errors("simulation", doc) == []
+    assert errors("simulation", {**doc, "format": "1"}) != []
+    assert errors("simulation", {**doc, "t": ["0"]}) != []
+    assert errors("simulation", {k: v for k, v in doc.items() if k != "energy_check"}) != []
+
+
+@pytest.mark.parametrize("kind", ["solution", "check", "summary", "simulation"])
+def test_every_json_output_schema_requires_its_format_version(kind: str) -> None:
+    schema = SCHEMAS[kind]()
+    assert "format" in schema["required"]
+    assert schema["properties"]["format"]["const"] == int(schema["$id"].rsplit(":", 1)[1])
+
+
+def test_schema_kinds_are_the_commands_choices() -> None:
+    from typer.testing import CliRunner
+
+    from tutgen.cli.main import app
+
+    for kind in SCHEMAS:
+        result = CliRunner().invoke(app, ["schema", "--kind", kind])
+        assert result.exit_code == 0 and json.loads(result.stdout)["$id"] == schema_id(kind)
+
+
+# --- the spec schema carries the validator's semantic limits ---
+
+
+def _p02() -> dict[str, Any]:
+    return _yaml(SPECS / "tutorial-1" / "p02-pivoted-rod.yaml")
+
+
+def _with(doc: dict[str, Any], *path_value: Any) -> dict[str, Any]:
+    doc = copy.deepcopy(doc)
+    *path, value = path_value
+    target = doc
+    for key in path[:-1]:
+        target = target[key]
+    target[path[-1]] = value
+    return doc
+
+
+@pytest.mark.parametrize(
+    "doc",
+    [
+        pytest.param(_with(_p02(), "coordinates", [f"q{i}" for i in range(13)]), id="13-coordinates-list"),
+        pytest.param(_with(_p02(), "coordinates", {f"q{i}": None for i in range(13)}), id="13-coordinates-map"),
+        pytest.param(_with(_p02(), "parameters", "2m", {"value": 1}), id="name-starts-with-digit"),
+        pytest.param(_with(_p02(), "parameters", "sin", {"value": 1}), id="name-is-a-function"),
+        pytest.param(_with(_p02(), "parameters", "lambda", {"value": 1}), id="name-is-a-keyword"),
+        pytest.param(_with(_p02(), "coordinates", ["theta_dot"]), id="name-is-a-rate"),
+        pytest.param(_with(_p02(), "bodies", "ground", {"mass": "m"}), id="body-called-ground"),
+        pytest.param(_with(_p02(), "bodies", "rod", "parts", "rod bar", {"shape": "point", "mass": "m"}), id="part"),
+        pytest.param(_with(_p02(), "bodies", "rod", "mass", "m"), id="parts-and-mass"),
+        pytest.param(_with(_p02(), "bodies", "rod", "parts", "rod", "density", 7800), id="mass-and-density"),
+        pytest.param(
+            _with(_yaml(SPECS / "tutorial-1" / "p10-given-kinetic-energy.yaml"), "bodies", {"b": {"mass": 1}}),
+            id="energy-and-bodies",
+        ),
+        pytest.param(
+            _with(_yaml(SPECS / "tutorial-1" / "p10-given-kinetic-energy.yaml"), "gravity", [0, -9.81, 0]),
+            id="energy-and-gravity",
+        ),
+    ],
+)
+def test_the_spec_schema_refuses_what_the_validator_refuses(doc: dict[str, Any]) -> None:
+    from tutgen.api import loads
+    from tutgen.errors import SpecErrors
+
+    with pytest.raises(SpecErrors):
+        loads(yaml.safe_dump(doc, sort_keys=False))
+    assert errors("spec", doc) != []
+
+
+def test_the_spec_schema_takes_twelve_coordinates_and_plain_names() -> None:
+    doc = _with(_p02(), "coordinates", {f"q{i}": None for i in range(12)})
+    assert errors("spec", doc) == []
+    assert errors("spec", _with(_p02(), "parameters", "theta_dot2", {"value": 1})) == []
+
+
+@pytest.mark.slow  # a sheet with one variant: 6 s
+def test_a_sheets_answer_keys_and_marking_keys_fit_their_schemas(tmp_path: Any) -> None:
+    """What `tutgen sheet` writes for a variant: its spec, its answer key (an answers file that
+    `tutgen check` marks right) and its marking key."""
+    from typer.testing import CliRunner
+
+    from tutgen.cli.main import app
+
+    sheet = tmp_path / "sheet.yaml"
+    sheet.write_text(
+        f"title: One\nproblems:\n  - spec: {SPECS / 'tutorial-1' / 'p03-cart-pendulum.yaml'}\n"
+        "    vary:\n      m1: {range: [1, 5], step: 0.5, unit: kg}\n",
+        encoding="utf-8",
+    )
+    result = CliRunner().invoke(app, ["sheet", str(sheet), "-o", str(tmp_path / "out"), "-n", "1", "-j", "1", "-q"])
+    assert result.exit_code == 0, result.output
+    variant = tmp_path / "out" / "variants" / "v001"
+    assert errors("answers", _yaml(variant / "key-p03-cart-pendulum.yaml")) == []
+    assert errors("key", _yaml(variant / "marking-p03-cart-pendulum.yaml")) == []
+    assert errors("spec", _yaml(variant / "specs" / "p03-cart-pendulum.yaml")) == []

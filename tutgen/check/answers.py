@@ -141,7 +141,6 @@ def read_answers(path: str | Path) -> AnswerSheet:
     (:func:`tutgen.check.compare.check_sheet`), so that every problem is reported at once.
     """
     data, smap = load_yaml_file(path)
-    name = str(path)
     errors: list[SpecError] = []
     if data is None:  # an empty file answers nothing: every asked item is missing
         data = {}
@@ -182,8 +181,6 @@ def read_answers(path: str | Path) -> AnswerSheet:
             errors.append(unknown_key_error(head, smap.key_location(keypath)))
             continue
         items.append(AnswerItem(key, segments, value, keypath, smap.key_location(keypath)))
-    try:
-        text = Path(path).read_text(encoding="utf-8-sig", errors="replace")
-    except OSError:  # pragma: no cover - it was just read
-        text = ""
-    return AnswerSheet(name, student, spec, tolerance, tuple(items), smap, tuple(text.splitlines()), tuple(errors))
+    # the text as loaded (a file, or standard input for `-`), to recover how numbers were written
+    lines = tuple(smap.text.splitlines())
+    return AnswerSheet(smap.path, student, spec, tolerance, tuple(items), smap, lines, tuple(errors))

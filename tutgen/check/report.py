@@ -31,6 +31,8 @@ from tutgen.safetext import csv_cell, terminal_text, xml_text
 from tutgen.version import __version__
 
 __all__ = [
+    "FILE_STATUSES",
+    "FORMAT_VERSION",
     "SUMMARY_FIELDS",
     "json_text",
     "plan_reports",
@@ -43,6 +45,10 @@ __all__ = [
     "summary_rows",
     "write_reports",
 ]
+
+#: The version of the layout of the JSON report and the JSON summary (their ``format`` key; additive
+#: changes keep it; the schemas are ``tutgen schema --kind check|summary``).
+FORMAT_VERSION = 1
 
 #: Columns of the summary (CSV), one row per answers file; also the keys of each JSON summary row.
 SUMMARY_FIELDS = (
@@ -103,6 +109,7 @@ def run_to_json(run: CheckRun) -> dict[str, Any]:
     statuses = [f.status for f in run.files]
     return {
         "tutgen": __version__,
+        "format": FORMAT_VERSION,
         "spec": run.spec,
         "title": run.title,
         "summary": {"files": len(run.files), **{s: statuses.count(s) for s in FILE_STATUSES}},
@@ -263,7 +270,7 @@ def render_summary(run: CheckRun, fmt: str) -> str:
     """The summary as ``csv`` or ``json`` text."""
     rows = summary_rows(run)
     if fmt == "json":
-        return json_text({"spec": run.spec, "files": rows})
+        return json_text({"format": FORMAT_VERSION, "spec": run.spec, "files": rows})
     buffer = io.StringIO()
     writer = csv.DictWriter(buffer, fieldnames=SUMMARY_FIELDS, lineterminator="\n")
     writer.writeheader()

@@ -8,11 +8,15 @@ from typing import Annotated
 import typer
 
 from tutgen.cli.errors import handle_errors
+from tutgen.cli.options import Quiet
+from tutgen.cli.stdio import refuse_stdout
 
 
 @handle_errors
 def figure(
-    spec: Annotated[Path, typer.Argument(help="The spec file (YAML).", show_default=False)],
+    spec: Annotated[
+        Path, typer.Argument(metavar="SPEC", help="The spec file (YAML; '-' for stdin).", show_default=False)
+    ],
     output: Annotated[
         Path, typer.Option("--output", "-o", metavar="FILE", help="fig.svg, fig.tex or fig.pdf.", show_default=False)
     ],
@@ -23,6 +27,7 @@ def figure(
             "--body", metavar="NAME", help="Draw the free-body diagram of this body instead.", show_default=False
         ),
     ] = None,
+    quiet: Quiet = False,
 ) -> None:
     """Draw the schematic of SPEC (or, with --body, one body's free-body diagram) and write it as SVG, a
     LaTeX (TikZ) document or PDF, by -o's suffix."""
@@ -30,6 +35,7 @@ def figure(
     from tutgen.errors import UsageError
     from tutgen.figure.view import FIGURE_FORMATS, render_figure
 
+    refuse_stdout("-o", output, "the figure's format is chosen by the file's suffix (.svg, .tex, .pdf)")
     fmt = FIGURE_FORMATS.get(output.suffix.lower())
     if fmt is None:
         raise UsageError(f"-o {output}: expected a file ending in .svg, .tex or .pdf")

@@ -12,13 +12,14 @@ import typer
 
 from tutgen.cli import check, code, figure, schema_cmd, sheet, simulate, solve, validate
 from tutgen.cli.errors import install_signal_handlers, set_debug
+from tutgen.cli.help import Command
 from tutgen.version import __version__
 
 app = typer.Typer(
     name="tutgen",
     help="Worked solutions for rigid-body and robot dynamics problems, from a short YAML spec.",
     no_args_is_help=True,
-    add_completion=False,
+    add_completion=True,  # --install-completion, --show-completion (docs/cli.md)
     pretty_exceptions_show_locals=False,
     pretty_exceptions_enable=False,
     rich_markup_mode=None,
@@ -45,16 +46,21 @@ def main(
     """
     set_debug(debug)
     install_signal_handlers()
+    stdin = sys.modules.get("tutgen.spec.stdin")
+    if stdin is not None:  # stdin ('-') is read once per command: a new command reads it afresh
+        stdin.forget_stdin()
 
 
-app.command(name="solve")(solve.solve)
-app.command(name="schema")(schema_cmd.schema)
-app.command(name="check")(check.check)
-app.command(name="sheet")(sheet.sheet)
-app.command(name="figure")(figure.figure)  # tutgen/cli/figure.py
-app.command(name="validate")(validate.validate)  # tutgen/cli/validate.py
-app.command(name="simulate")(simulate.simulate)  # tutgen/cli/simulate.py (scipy, matplotlib imported inside)
-app.command(name="code")(code.code)  # tutgen/cli/code.py
+app.command(name="solve", cls=Command)(solve.solve)
+app.command(name="schema", cls=Command)(schema_cmd.schema)
+app.command(name="check", cls=Command)(check.check)
+app.command(name="sheet", cls=Command)(sheet.sheet)
+app.command(name="figure", cls=Command)(figure.figure)  # tutgen/cli/figure.py
+app.command(name="validate", cls=Command)(validate.validate)  # tutgen/cli/validate.py
+app.command(name="simulate", cls=Command)(
+    simulate.simulate
+)  # tutgen/cli/simulate.py (scipy, matplotlib imported inside)
+app.command(name="code", cls=Command)(code.code)  # tutgen/cli/code.py
 
 
 def run() -> None:

@@ -8,12 +8,11 @@ from typing import Annotated
 import typer
 
 from tutgen.cli.errors import handle_errors, stdout_write
+from tutgen.schemas import SCHEMAS
 
-
-class Kind(StrEnum):
-    spec = "spec"
-    sheet = "sheet"
-    solution = "solution"
+#: The kinds of file, as ``tutgen.schemas.SCHEMAS`` names them (that module imports nothing heavy)
+Kind = StrEnum("Kind", {kind: kind for kind in SCHEMAS})
+DEFAULT_KIND = Kind("spec")
 
 
 @handle_errors
@@ -23,14 +22,17 @@ def schema(
         typer.Option(
             "--kind",
             "-k",
-            help="Which file: a spec, a sheet, or the JSON of `tutgen solve --format json` (solution).",
+            metavar="KIND",
+            help="Which file: spec, sheet, answers, key (a marking key), or an output: solution (tutgen solve "
+            "--format json), check (tutgen check --format json), summary (--summary FILE.json), simulation "
+            "(tutgen simulate's JSON).",
         ),
-    ] = Kind.spec,
+    ] = DEFAULT_KIND,
 ) -> None:
     """Print the JSON Schema (draft 2020-12) of a file tutgen reads or writes, for editors and scripts:
-    completion and checking of specs and sheets, validation of the solution JSON. Each has an $id
-    urn:tutgen:schema:KIND:VERSION."""
+    completion and checking of specs, sheets, answers files and marking keys, validation of the JSON
+    tutgen writes. Each has an $id urn:tutgen:schema:KIND:VERSION, and each JSON output its "format"
+    VERSION. The same schemas are shipped in schemas/KIND.schema.json."""
     from tutgen.render.jsonout import dumps
-    from tutgen.schemas import SCHEMAS
 
     stdout_write(dumps(SCHEMAS[kind.value]()))

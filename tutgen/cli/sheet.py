@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from enum import StrEnum
@@ -12,6 +11,8 @@ from typing import Annotated
 import typer
 
 from tutgen.cli.errors import echo_error, handle_errors
+from tutgen.cli.options import Progress, Quiet, show_progress
+from tutgen.cli.stdio import refuse_stdout
 from tutgen.limits import DEFAULT_TIMEOUT
 
 
@@ -29,7 +30,7 @@ class SheetFormat(StrEnum):
 
 @handle_errors
 def sheet(
-    sheet: Annotated[Path, typer.Argument(help="The sheet file (YAML).", show_default=False)],
+    sheet: Annotated[Path, typer.Argument(metavar="SHEET", help="The sheet file (YAML).", show_default=False)],
     output: Annotated[
         str | None,
         typer.Option(
@@ -38,13 +39,21 @@ def sheet(
     ] = None,
     formats: Annotated[
         list[SheetFormat] | None,
-        typer.Option("--format", "-f", help="Output format; repeat for several (default md)."),
+        typer.Option(
+            "--format",
+            "-f",
+            metavar="FORMAT",
+            help=f"Output format: {', '.join(SheetFormat)}; repeat for several (default md).",
+            show_default=False,
+        ),
     ] = None,
     variants: Annotated[
         int | None,
-        typer.Option("--variants", "-n", min=1, max=10_000, help="Build N variants v001..vN.", show_default=False),
+        typer.Option(
+            "--variants", "-n", metavar="N", min=1, max=10_000, help="Build N variants v001..vN.", show_default=False
+        ),
     ] = None,
-    seed: Annotated[int, typer.Option("--seed", help="The seed of the variants' values.")] = 0,
+    seed: Annotated[int, typer.Option("--seed", metavar="SEED", help="The seed of the variants' values.")] = 0,
     students: Annotated[
         Path | None,
         typer.Option(
@@ -53,7 +62,9 @@ def sheet(
     ] = None,
     workers: Annotated[
         int | None,
-        typer.Option("--workers", "-j", min=1, help="Worker processes (default: one per core).", show_default=False),
+        typer.Option(
+            "--workers", "-j", metavar="N", min=1, help="Worker processes (default: one per core).", show_default=False
+        ),
     ] = None,
     scheduler: Annotated[
         str | None,
@@ -64,16 +75,14 @@ def sheet(
             show_default=False,
         ),
     ] = None,
-    progress: Annotated[
-        bool | None,
-        typer.Option("--progress/--no-progress", help="A progress bar on stderr (default: when it is a terminal)."),
-    ] = None,
+    progress: Progress = None,
     method: Annotated[
         SheetMethod | None,
         typer.Option(
             "--method",
             "-m",
-            help="The formulations the worked solutions present, for every problem: Lagrange, Newton-Euler, "
+            metavar="METHOD",
+            help="The formulations the worked solutions present, for every problem: lagrange, newton-euler "
             "or both (default: each problem spec's `methods:`, Lagrange unless it says otherwise).",
             show_default=False,
         ),
@@ -88,6 +97,7 @@ def sheet(
             help="Stop the run (reading, deriving and building the sheets) after this long (0: no limit).",
         ),
     ] = DEFAULT_TIMEOUT,
+    quiet: Quiet = False,
 ) -> None:
     """Build the question sheet and the solution sheet of SHEET, and with --variants or --students a
     variant per student: its concrete specs, question and solution sheets and answer keys.
@@ -99,6 +109,7 @@ def sheet(
     from tutgen.limits import deadline
     from tutgen.sheet.run import plan_sheet, run_sheet
 
+    refuse_stdout("-o", output, "a sheet is a directory of files", "a directory")
     with deadline(timeout):  # one budget: reading the sheet, deriving, building
         plan = plan_sheet(
             sheet,
@@ -108,7 +119,7 @@ def sheet(
             students=students,
             force=force,
         )
-        with _progress(plan.jobs, progress) as advance:
+        with _progress(plan.jobs, show_progress(progress, quiet, plan.jobs)) as advance:
             report = run_sheet(
                 plan,
                 seed=seed,
@@ -118,12 +129,13 @@ def sheet(
                 method=method.value if method is not None else None,
                 on_done=advance,
             )
-    echo_error(report)
+    if not quiet:
+        echo_error(report)
 
 
 @contextmanager
-def _progress(total: int, wanted: bool | None) -> Iterator[Callable[[], None] | None]:
-    show = wanted if wanted is not None else (total > 1 and sys.stderr.isatty())
+def _progress(total: int, show: bool) -> Iterator[Callable[[], None] | None]:
+    """A progress bar on stderr while the variants are built (:func:`tutgen.cli.options.show_progress`)."""
     if not show:
         yield None
         return

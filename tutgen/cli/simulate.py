@@ -9,6 +9,8 @@ from typing import Annotated
 import typer
 
 from tutgen.cli.errors import handle_errors, stdout_write
+from tutgen.cli.options import Quiet
+from tutgen.cli.stdio import refuse_stdout, refuse_unnamed
 from tutgen.limits import DEFAULT_TIMEOUT
 
 
@@ -35,10 +37,10 @@ def _pairs(items: list[str], option: str) -> dict[str, str]:
 
 @handle_errors
 def simulate(
-    spec: Annotated[Path, typer.Argument(help="The spec file (YAML).", show_default=False)],
+    spec: Annotated[Path, typer.Argument(metavar="SPEC", help="The spec file (YAML).", show_default=False)],
     output: Annotated[
-        Path, typer.Option("--output", "-o", metavar="DIR", help="Directory for the trajectory and plots.")
-    ] = Path("."),
+        str, typer.Option("--output", "-o", metavar="DIR", help="Directory for the trajectory and plots.")
+    ] = ".",
     set_: Annotated[
         list[str] | None, typer.Option("--set", metavar="NAME=VALUE", help="A parameter's value (repeatable).")
     ] = None,
@@ -52,19 +54,28 @@ def simulate(
         float | None, typer.Option("--t-end", metavar="SECONDS", help="End of the interval (default: the spec's).")
     ] = None,
     samples: Annotated[
-        int | None, typer.Option("--samples", min=2, max=1_000_000, help="Instants written (default: the spec's).")
+        int | None,
+        typer.Option("--samples", metavar="N", min=2, max=1_000_000, help="Instants written (default: the spec's)."),
     ] = None,
     method: Annotated[
-        Method, typer.Option("--method", help="Integrator; auto: DOP853, or Radau when the start is stiff.")
+        Method,
+        typer.Option(
+            "--method",
+            metavar="METHOD",
+            help=f"Integrator: {', '.join(Method)}; auto: DOP853, or Radau when the start is stiff.",
+        ),
     ] = Method.auto,
-    rtol: Annotated[float, typer.Option("--rtol", min=1e-14, max=1e-2, help="Relative tolerance.")] = 1e-10,
-    atol: Annotated[float, typer.Option("--atol", min=0, max=1, help="Absolute tolerance.")] = 1e-12,
+    rtol: Annotated[
+        float, typer.Option("--rtol", metavar="TOL", min=1e-14, max=1e-2, help="Relative tolerance.")
+    ] = 1e-10,
+    atol: Annotated[float, typer.Option("--atol", metavar="TOL", min=0, max=1, help="Absolute tolerance.")] = 1e-12,
     plots: Annotated[bool, typer.Option("--plots/--no-plots", help="Write the PNG plots.")] = True,
     force: Annotated[bool, typer.Option("--force", help="Overwrite existing output files.")] = False,
     timeout: Annotated[
         float,
         typer.Option("--timeout", metavar="SECONDS", min=0, help="Stop a run that takes longer (0: no limit)."),
     ] = DEFAULT_TIMEOUT,
+    quiet: Quiet = False,
 ) -> None:
     """Integrate the equations of motion of SPEC and write the trajectory (CSV, JSON) and plots (PNG).
 
@@ -77,7 +88,9 @@ def simulate(
     from tutgen.sim.files import write_simulation
     from tutgen.sim.run import Settings
 
-    check_output_path(output)
+    refuse_stdout("-o", output, "a simulation writes several files (CSV, JSON, plots)", "a directory")
+    refuse_unnamed(spec, "the files of a simulation are named after its spec")
+    check_output_path(Path(output))
     settings = Settings(
         values=_pairs(set_ or [], "--set"),
         q0=_pairs(q0 or [], "--q0"),
@@ -89,4 +102,6 @@ def simulate(
         atol=atol,
         timeout=timeout or None,
     )
-    stdout_write(write_simulation(spec, output, settings, plots=plots, force=force))
+    summary = write_simulation(spec, Path(output), settings, plots=plots, force=force)
+    if not quiet:
+        stdout_write(summary)

@@ -9,6 +9,8 @@ from typing import Annotated
 import typer
 
 from tutgen.cli.errors import handle_errors
+from tutgen.cli.options import Quiet
+from tutgen.cli.stdio import is_stdio, refuse_second_stdin
 
 
 def is_sheet_file(path: Path) -> bool:
@@ -26,8 +28,13 @@ def is_sheet_file(path: Path) -> bool:
 
 @handle_errors
 def validate(
-    files: Annotated[list[Path], typer.Argument(help="Spec or sheet files (YAML).", show_default=False)],
-    quiet: Annotated[bool, typer.Option("--quiet", "-q", help="Print only the errors.")] = False,
+    files: Annotated[
+        list[Path],
+        typer.Argument(
+            metavar="FILE...", help="Spec or sheet files (YAML); '-' reads one from stdin.", show_default=False
+        ),
+    ],
+    quiet: Quiet = False,
 ) -> None:
     """Check spec and sheet FILES (a sheet with every spec it names) as `tutgen solve` and `tutgen sheet`
     read them, without deriving: every error at its file:line:col, then exit 3 if any file has one.
@@ -35,8 +42,10 @@ def validate(
     from tutgen.errors import SpecError, SpecErrors
     from tutgen.safetext import terminal_text
     from tutgen.sheet.model import load_sheet
+    from tutgen.spec.loader import STDIN_NAME
     from tutgen.spec.validate import load_system
 
+    refuse_second_stdin(files)
     errors: list[SpecError] = []
     for path in files:
         try:
@@ -48,6 +57,6 @@ def validate(
             errors += exc.errors
             continue
         if not quiet:
-            typer.echo(terminal_text(f"{path}: ok"))
+            typer.echo(terminal_text(f"{STDIN_NAME if is_stdio(path) else path}: ok"))
     if errors:
         raise SpecErrors(errors)

@@ -44,6 +44,7 @@ from yaml.scanner import Scanner
 
 from tutgen.errors import Location, SpecError, SpecErrors
 from tutgen.spec.scalars import core_value
+from tutgen.spec.stdin import STDIN, STDIN_NAME, read_stdin
 
 __all__ = [
     "MAX_ALIASES",
@@ -220,6 +221,11 @@ class SourceMap:
     _entries: Mapping[KeyPath, _Entry] = field(default_factory=dict, repr=False)
     #: the text the spec was loaded from (to find offsets inside scalars written over several lines)
     _text: str = field(default="", repr=False)
+
+    @property
+    def text(self) -> str:
+        """The text the document was loaded from ("" for a document with nothing to locate)."""
+        return self._text
 
     def _find(self, keypath: KeyPath) -> _Entry | None:
         """The entry at ``keypath``, or at its nearest existing ancestor other than the root."""
@@ -747,10 +753,14 @@ def load_yaml_file(path: str | Path) -> tuple[Any, SourceMap]:
     """Load the YAML spec file at ``path``; see :func:`load_yaml_text`.
 
     The file must be UTF-8 (a byte-order mark is fine) and at most ``MAX_FILE_BYTES`` long; the size is
-    checked before the file is read in full. Locations name the file as ``str(path)``.
+    checked before the file is read in full. Locations name the file as ``str(path)``; the path ``-``
+    (:data:`tutgen.spec.stdin.STDIN`) is standard input, read once (:func:`tutgen.spec.stdin.read_stdin`)
+    and located as ``<stdin>``.
 
     Raises :class:`~tutgen.errors.SpecErrors`, also when the file cannot be read.
     """
+    if str(path) == STDIN:
+        return _load_bytes(read_stdin(MAX_FILE_BYTES + 1), STDIN_NAME)
     name = str(path)
     try:
         with open(path, "rb") as handle:
@@ -760,6 +770,10 @@ def load_yaml_file(path: str | Path) -> tuple[Any, SourceMap]:
     except OSError as err:
         reason = err.strerror or str(err)
         raise SpecErrors([SpecError(Location(name), f"cannot read file: {reason}")]) from None
+    return _load_bytes(data, name)
+
+
+def _load_bytes(data: bytes, name: str) -> tuple[Any, SourceMap]:
     if len(data) > MAX_FILE_BYTES:
         raise SpecErrors([_too_big(name)])
     if data.startswith(codecs.BOM_UTF8):
