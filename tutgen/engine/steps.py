@@ -56,6 +56,8 @@ class StepKind(StrEnum):
     MATRIX_FORM = "matrix_form"  # C, G and Q of H q_ddot + C + G = Q
     MASS_MATRIX_DERIVATIVES = "mass_matrix_derivatives"  # the non-zero dH_ij/dq_k
     CHRISTOFFEL = "christoffel"  # each symbol from its definition, then C as a vector
+    EQUILIBRIA = "equilibria"  # the rest configurations G(q) = Q(q, 0), each classified (engine/analysis)
+    LINEARIZATION = "linearization"  # M dq_ddot + D dq_dot + K dq = B du about an equilibrium, its modes
 
 
 #: teaching order: every step comes after the steps it depends on (the serial arm's equations of
@@ -78,6 +80,9 @@ _WHY = {
     StepKind.MATRIX_FORM: "The equations of motion as H q_ddot + C + G = Q, with G = dU/dq.",
     StepKind.MASS_MATRIX_DERIVATIVES: "The Christoffel symbols are made of the derivatives of H's entries.",
     StepKind.CHRISTOFFEL: "Each Christoffel symbol from its definition; C is their contraction with the rates.",
+    StepKind.EQUILIBRIA: "At rest q_dot = q_ddot = 0, so the equations of motion reduce to G(q) = Q(q, 0).",
+    StepKind.LINEARIZATION: "Small motions about an equilibrium obey the first-order expansion of the equations "
+    "of motion: M dq_ddot + D dq_dot + K dq = B du.",
 }
 
 _QUANTITY = {
@@ -93,6 +98,8 @@ _QUANTITY = {
     StepKind.MATRIX_FORM: "C, G, Q",
     StepKind.MASS_MATRIX_DERIVATIVES: "dH/dq",
     StepKind.CHRISTOFFEL: "Christoffel symbols and C",
+    StepKind.EQUILIBRIA: "equilibria",
+    StepKind.LINEARIZATION: "linear model",
 }
 
 
@@ -145,6 +152,7 @@ def _depends(system: System, methods: tuple[Method, ...], large: bool) -> dict[S
         if Method.NEWTON_EULER in methods and _newton_euler_applies(system):
             eom_needs.append(K.NEWTON_EULER)
     ne_needs = [K.INERTIA, K.KINEMATICS] if _has_rotational_inertia(system) else [K.KINEMATICS]
+    has_about = system.analysis is not None and system.analysis.about is not None
     form_needs = [K.MASS_MATRIX] + ([K.POTENTIAL_ENERGY] if _has_potential(system) else [])
     return {
         K.INERTIA: (),
@@ -159,6 +167,9 @@ def _depends(system: System, methods: tuple[Method, ...], large: bool) -> dict[S
         K.MATRIX_FORM: tuple(form_needs),
         K.MASS_MATRIX_DERIVATIVES: (K.MASS_MATRIX,),
         K.CHRISTOFFEL: (K.MASS_MATRIX_DERIVATIVES,),
+        K.EQUILIBRIA: (K.MATRIX_FORM,),
+        # about the spec's equilibrium, or about each one found
+        K.LINEARIZATION: (K.MATRIX_FORM,) if has_about else (K.EQUILIBRIA,),
     }
 
 
@@ -177,6 +188,8 @@ _ASKED = {
     Ask.EQUATIONS_OF_MOTION: (StepKind.EQUATIONS_OF_MOTION,),
     Ask.MATRIX_FORM: (StepKind.MASS_MATRIX, StepKind.MATRIX_FORM),
     Ask.CHRISTOFFEL: (StepKind.CHRISTOFFEL,),
+    Ask.EQUILIBRIA: (StepKind.EQUILIBRIA,),
+    Ask.LINEARIZATION: (StepKind.LINEARIZATION,),
 }
 
 
@@ -359,11 +372,39 @@ def _equations(d: Derivation, kind: StepKind, large: bool) -> tuple[Equation, ..
             Equation(sp.Derivative(H_ENTRY[i + 1, j + 1], q[k]), v)
             for (i, j, k), v in mass_matrix_derivatives(d).items()
         )
+    if kind in (K.EQUILIBRIA, K.LINEARIZATION):
+        return analysis_equations(d, kind)
     if kind is K.CHRISTOFFEL:
         if large:
             return _pairs((_name("C"), d.coriolis_vector))
         return (*christoffel_definitions(d), *_pairs((_name("C"), d.coriolis_vector)))
     return ()
+
+
+def analysis_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
+    """The equilibria step: G - Q at rest, then each equilibrium q0_i (every coordinate's value); the
+    linearization step: M_i, D_i, K_i, B_i and A_i of each linear model, 1-based as the equilibria."""
+    a = d.analysis
+    if a is None:
+        return ()
+    if kind is StepKind.EQUILIBRIA:
+        if a.equilibria is None:
+            return ()
+        out = [Equation(_name("G_minus_Q"), a.equilibria.residual)]
+        for i, sol in enumerate(a.equilibria.solutions, start=1):
+            out.append(Equation(_name(f"q0_{i}"), sp.ImmutableMatrix([v for _, v in sol])))
+        return tuple(out)
+    out = []
+    for i, m in enumerate(a.linear, start=1):
+        out += [
+            Equation(_name(f"q0_{i}"), sp.ImmutableMatrix([v for _, v in m.about])),
+            Equation(_name(f"M_{i}"), m.mass),
+            Equation(_name(f"D_{i}"), m.damping),
+            Equation(_name(f"K_{i}"), m.stiffness),
+            *([Equation(_name(f"B_{i}"), m.input_matrix)] if m.inputs else []),
+            Equation(_name(f"A_{i}"), m.state_matrix),
+        ]
+    return tuple(out)
 
 
 def christoffel_definitions(d: Derivation) -> tuple[Equation, ...]:
@@ -418,6 +459,7 @@ _CHECK_ABOUT = {
     "symmetric_mass_matrix": (StepKind.MASS_MATRIX,),
     "positive_semidefinite_mass_matrix": (StepKind.MASS_MATRIX,),
     "dimensional_consistency": (StepKind.EQUATIONS_OF_MOTION, StepKind.LAGRANGE_EQUATIONS),
+    "linearization_matches_finite_differences": (StepKind.EQUILIBRIA, StepKind.LINEARIZATION),
 }
 
 

@@ -18,6 +18,7 @@ from enum import StrEnum
 import sympy as sp
 
 from tutgen.errors import Location
+from tutgen.model.analysis import Analysis
 from tutgen.model.figure import FigureConfig
 from tutgen.model.marking import Marking
 from tutgen.model.simulation import Simulation
@@ -199,6 +200,13 @@ class Ask(StrEnum):
     EQUATIONS_OF_MOTION = "equations_of_motion"
     MATRIX_FORM = "matrix_form"
     CHRISTOFFEL = "christoffel"
+    EQUILIBRIA = "equilibria"
+    LINEARIZATION = "linearization"
+
+
+#: the items of ``ask`` that a spec must name: the default (everything that applies) is the equations
+#: of motion and what leads to them, not the analysis that follows them (tutgen.engine.analysis)
+OPT_IN_ASK = frozenset({Ask.EQUILIBRIA, Ask.LINEARIZATION})
 
 
 class Method(StrEnum):
@@ -287,6 +295,7 @@ class System:
     arm: ArmTable | None = None  # the spec's `arm:` table as written (its links are in bodies and joints)
     question_title: str | None = None  # the question sheet's title, when it differs from ``title``
     given: Given = field(default_factory=Given)
+    analysis: Analysis | None = None  # the spec's `analysis:` section (equilibrium, inputs)
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

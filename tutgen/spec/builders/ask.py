@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from tutgen.model.system import Ask
+from tutgen.model.system import OPT_IN_ASK, Ask
 from tutgen.spec.builders.context import Context
 
 
@@ -11,7 +11,8 @@ def build_ask(ctx: Context, dynamic: bool) -> frozenset[Ask]:
     spec that has nothing that moves, ``dynamic`` False).
 
     An item that does not apply is a problem at its place: anything but `inertia` without coordinates
-    (nothing moves), `inertia` without bodies (a system given by its energy).
+    (nothing moves), `inertia` without bodies (a system given by its energy); so is an `analysis`
+    section when `ask` names neither `equilibria` nor `linearization`, which are never in the default.
     """
     if ctx.doc.ask is not None:
         # coordinates set aside for a shape error (already reported) may be what is missing: no cascade
@@ -33,10 +34,18 @@ def build_ask(ctx: Context, dynamic: bool) -> frozenset[Ask]:
                 )
             else:
                 asked.add(a)
+        if ctx.doc.analysis is not None and dynamic and not asked & OPT_IN_ASK:
+            ctx.error(
+                ("analysis",),
+                "`analysis` gives the equilibrium and inputs of `equilibria` and `linearization`, and `ask` "
+                "names neither",
+                "add `linearization` (or `equilibria`) to `ask`, or remove `analysis`",
+                key=True,
+            )
         return frozenset(asked)
     if not dynamic:
         return frozenset({Ask.INERTIA})
-    everything = set(Ask)
+    everything = set(Ask) - OPT_IN_ASK  # the analysis after the equations of motion is asked for by name
     if not ctx.doc.bodies:
         everything.discard(Ask.INERTIA)
     return frozenset(everything)
