@@ -153,6 +153,10 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
             results["christoffel_first_kind"] = _christoffel(d.christoffel_first_kind, num, large)
         if d.newton_euler is not None and Ask.EQUATIONS_OF_MOTION in ask:
             results["newton_euler"] = _newton_euler(d.newton_euler, num)
+        if d.analysis is not None:  # issue 18: equilibria, linear models (render/analysis_json.py)
+            from tutgen.render.analysis_json import analysis_results
+
+            results.update(analysis_results(d))
 
     return {
         "tutgen": __version__,

@@ -20,6 +20,7 @@ from tutgen.figure.view import figure_view
 from tutgen.model.system import System
 from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, prose, rich, unit_tex
 from tutgen.render.printer import TexPrinter, is_decimal_document
+from tutgen.render.sections.analysis import equilibria, linearization
 from tutgen.render.sections.arm import arm_table
 from tutgen.render.sections.energy import energies
 from tutgen.render.sections.inertia import mass_properties
@@ -51,6 +52,8 @@ BUILDERS: dict[StepKind, tuple[Builder, ...]] = {
     StepKind.MATRIX_FORM: (arm_table, matrix_form),
     StepKind.MASS_MATRIX_DERIVATIVES: (christoffel_symbols,),
     StepKind.CHRISTOFFEL: (christoffel_symbols,),
+    StepKind.EQUILIBRIA: (equilibria,),
+    StepKind.LINEARIZATION: (linearization,),
 }
 
 
