@@ -143,8 +143,50 @@ def find_equilibria(d: Derivation) -> Equilibria:
     return Equilibria(residual, tuple(out), free, method)
 
 
+def _solve_one(equation: sp.Expr, x: sp.Symbol) -> list[sp.Expr] | None:
+    """The roots of one equation in one unknown, factor by factor, every family of one period: a factor
+    in cos(x) alone gives +- acos(c), one in sin(x) alone asin(s) and pi - asin(s) (sympy's own solve
+    returns half-angle forms and drops roots such as pi for these); other factors go to sympy."""
+    c, s = sp.Dummy("c"), sp.Dummy("s")
+    roots: list[sp.Expr] = []
+    for factor, _ in sp.factor_list(sp.factor(equation))[1]:
+        if not factor.has(x):
+            continue
+        if factor.has(sp.tan):
+            factor = sp.together(factor.rewrite(sp.sin)).as_numer_denom()[0]
+        in_cos = factor.xreplace({sp.cos(x): c})
+        in_sin = factor.xreplace({sp.sin(x): s})
+        try:
+            if not in_cos.has(x):
+                for v in sp.solve(in_cos, c):
+                    roots += [sp.acos(v)] if sp.acos(v) in (0, sp.pi) else [sp.acos(v), -sp.acos(v)]
+            elif not in_sin.has(x):
+                for v in sp.solve(in_sin, s):
+                    roots += [sp.asin(v)] if sp.asin(v) == sp.pi / 2 else [sp.asin(v), sp.pi - sp.asin(v)]
+            else:
+                roots += sp.solve(factor, x)
+        except (NotImplementedError, ValueError, TypeError):
+            return None
+    return [r for r in roots if r.is_real is not False]
+
+
 def _solve_symbolic(equations: list[sp.Expr], unknowns: list[sp.Symbol]) -> list[dict[sp.Symbol, sp.Expr]] | None:
-    """sympy's solutions, each real and complete, or None when sympy cannot solve the system."""
+    """Every real solution, or None when sympy cannot solve the system. Equations in one unknown each
+    (decoupled, the common case) are solved one by one (:func:`_solve_one`) and combined; a coupled
+    system goes to sympy's solve whole."""
+    alone = {u: [e for e in equations if e.free_symbols & set(unknowns) == {u}] for u in unknowns}
+    if all(alone.values()) and sum(len(v) for v in alone.values()) == len(equations):
+        choices: list[list[dict[sp.Symbol, sp.Expr]]] = []
+        for u, eqs in alone.items():
+            roots = _solve_one(eqs[0], u)
+            if roots is None:
+                return None
+            roots = [r for r in roots if all(sp.simplify(e.subs(u, r)) == 0 for e in eqs[1:])]
+            choices.append([{u: r} for r in roots])
+        out: list[dict[sp.Symbol, sp.Expr]] = [{}]
+        for options in choices:
+            out = [{**a, **b} for a in out for b in options]
+        return out
     try:
         sols = sp.solve(equations, unknowns, dict=True)
     except (NotImplementedError, ValueError, TypeError):
@@ -157,6 +199,23 @@ def _solve_symbolic(equations: list[sp.Expr], unknowns: list[sp.Symbol]) -> list
             continue
         out.append(sol)
     return out
+
+
+def existence(value: sp.Expr) -> tuple[sp.Basic, ...]:
+    """Where a symbolic equilibrium exists: the argument of each acos or asin in it must lie in [-1, 1]
+    (only the bound that can fail, for an argument of known sign), e.g. g/(R omega^2) <= 1."""
+    out: list[sp.Basic] = []
+    for f in sorted(value.atoms(sp.acos, sp.asin), key=default_sort_key):
+        arg = f.args[0]
+        if arg.is_number:
+            continue
+        if arg.is_nonnegative:
+            out.append(sp.Le(arg, 1))
+        elif arg.is_nonpositive:
+            out.append(sp.Ge(arg, -1))
+        else:
+            out += [sp.Ge(arg, -1), sp.Le(arg, 1)]
+    return tuple(dict.fromkeys(out))
 
 
 def _solve_numeric(d: Derivation, residual: sp.ImmutableMatrix, present: list) -> list[dict[sp.Symbol, sp.Expr]]:

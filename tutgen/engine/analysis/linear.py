@@ -59,9 +59,13 @@ class LinearModel:
     state_input: sp.ImmutableMatrix
     characteristic: sp.Expr | None  # det(M s^2 + D s + K), for up to 3 coordinates
     modes: tuple[Mode, ...] | None  # numeric specs
-    verdict: str  # "asymptotically stable", "stable", "unstable", "undetermined"
+    # "asymptotically stable", "stable", "unstable", "conditional" (stable where ``stable_where`` holds)
+    # or "undetermined" (the linear model does not decide)
+    verdict: str
     reason: str
     conditions: tuple[sp.Expr, ...] = ()  # symbolic: the leading minors of K, each > 0 for stability
+    # symbolic and undecided: each minor > 0 with its positive factors taken out (g - R omega^2 > 0)
+    stable_where: tuple[sp.Basic, ...] = ()
     check: Check | None = None
 
 
@@ -102,10 +106,15 @@ def linearize(d: Derivation, about: tuple[tuple[str, sp.Expr], ...]) -> LinearMo
     numeric = not (a.free_symbols - set(d.values))
     modes = _modes(d, a, n) if numeric else None
     conditions: tuple[sp.Expr, ...] = ()
+    where: tuple[sp.Basic, ...] = ()
     if modes is not None:
         verdict, reason = _eigen_verdict(d, modes, damping, stiffness)
     else:
         verdict, reason, conditions = stiffness_verdict(damping, stiffness)
+        if verdict == "undetermined" and conditions:
+            where = tuple(c for c in (sign_condition(m) for m in conditions) if c is not sp.true)
+            if where and sp.false not in where:
+                verdict = "conditional"
     return LinearModel(
         about=about,
         inputs=inputs,
@@ -120,8 +129,37 @@ def linearize(d: Derivation, about: tuple[tuple[str, sp.Expr], ...]) -> LinearMo
         verdict=verdict,
         reason=reason,
         conditions=conditions,
+        stable_where=where,
         check=_finite_difference_check(d, rest, mass, damping, stiffness),
     )
+
+
+def sign_condition(expr: sp.Expr) -> sp.Basic:
+    """``expr > 0`` with the factors known to be positive (parameters, even powers) taken out:
+    m R (g - R omega^2) > 0 is g - R omega^2 > 0. sympy's true or false when the sign is known."""
+    expr = sp.factor(expr)
+    factors = sp.Mul.make_args(expr)
+    kept = [f for f in factors if not f.is_positive]
+    sign = 1
+    rest = []
+    for f in kept:
+        if f.is_negative:
+            sign = -sign
+        else:
+            rest.append(f)
+    body = sp.Mul(*rest)
+    if sign < 0:
+        body = -body
+    if body.is_positive:
+        return sp.true
+    if body.is_nonpositive:
+        return sp.false
+    body = sp.expand(body)
+    # the negative terms on the right: g > R omega^2, not -R omega^2 + g > 0
+    terms = sp.Add.make_args(body)
+    right = sp.Add(*[-t for t in terms if t.could_extract_minus_sign()])
+    left = sp.Add(*[t for t in terms if not t.could_extract_minus_sign()])
+    return sp.StrictGreaterThan(left, right, evaluate=False)
 
 
 def _minors(k: sp.Matrix) -> list[sp.Expr]:
@@ -142,7 +180,7 @@ def stiffness_verdict(damping: sp.Matrix, stiffness: sp.Matrix) -> tuple[str, st
         return "unstable", "K is not positive semi-definite: U decreases along some direction", tuple(minors)
     if all(m.is_nonnegative for m in minors) and any(m.is_zero for m in minors):
         return "undetermined", "K is singular: the linear model has a neutral direction", tuple(minors)
-    return "undetermined", "stable where every leading minor of K is positive", tuple(minors)
+    return "undetermined", "the sign of K depends on the parameters: stable where K is positive definite", tuple(minors)
 
 
 def _modes(d: Derivation, a: sp.Matrix, n: int) -> tuple[Mode, ...]:

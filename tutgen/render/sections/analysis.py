@@ -9,6 +9,7 @@ from typing import Any
 import sympy as sp
 
 from tutgen.engine.analysis import LinearModel, Mode
+from tutgen.engine.analysis.equilibria import existence
 from tutgen.engine.analysis.linear import S
 from tutgen.engine.steps import StepKind
 from tutgen.render.blocks import Part, SolutionContext, boxed, display, math, para, section, strong, text
@@ -27,7 +28,16 @@ def _at(c: SolutionContext, values: tuple[tuple[str, sp.Expr], ...], free: tuple
 
 
 def _verdict(m: LinearModel) -> list[Part]:
-    return [strong(m.verdict.capitalize()), text(f": {m.reason}.")]
+    label = "Stable under a condition" if m.verdict == "conditional" else m.verdict.capitalize()
+    return [strong(label), text(f": {m.reason}.")]
+
+
+def _where(c: SolutionContext, m: LinearModel) -> list[dict[str, Any]]:
+    """The condition of stability of a symbolic equilibrium, as inequalities."""
+    if not m.stable_where:
+        return []
+    shown = ",\\quad ".join(c.tex(c.num(x)) for x in m.stable_where)
+    return [para(text("It is stable where")), display(shown)]
 
 
 def equilibria(c: SolutionContext) -> dict[str, Any] | None:
@@ -70,7 +80,14 @@ def equilibria(c: SolutionContext) -> dict[str, Any] | None:
     angles = [q for q in s.coordinates if q.dimension == "angle" and q.name not in eq.free]
     for i, (sol, m) in enumerate(zip(eq.solutions, a.classified, strict=False), start=1):
         sec["blocks"].append(display(f"q_{{0,{i}}}:\\quad {_at(c, sol, eq.free)}"))
+        exists = [x for _, v in sol for x in existence(v)]
+        if exists:
+            shown = ",\\quad ".join(tex(num(x)) for x in exists)
+            sec["blocks"].append(para(text("It exists only where "), math(shown), text(" (a real angle).")))
+        k = "\\left.\\frac{\\partial (G - Q)}{\\partial q}\\right|_{q_{0," + str(i) + "}}"
+        sec["blocks"].append(display(f"K = {k} = {tex(num(m.stiffness))}"))
         sec["blocks"].append(para(*_verdict(m)))
+        sec["blocks"] += _where(c, m)
     if angles:
         names = [math(q.latex) for q in angles]
         sec["blocks"].append(
@@ -85,8 +102,9 @@ def equilibria(c: SolutionContext) -> dict[str, Any] | None:
     return sec
 
 
-def _column(c: SolutionContext, accent: str) -> str:
-    entries = [f"\\delta {accent}{{{q.latex}}}" if accent else f"\\delta {q.latex}" for q in c.s.coordinates]
+def _column(c: SolutionContext, order: int) -> str:
+    """The column of the small deviations, or of their rates (``order`` 1) or accelerations (2)."""
+    entries = [f"\\delta {c.tex((q.q, q.qd, q.qdd)[order])}" for q in c.s.coordinates]
     return "\\begin{bmatrix}" + " \\\\ ".join(entries) + "\\end{bmatrix}"
 
 
@@ -178,8 +196,8 @@ def _model(c: SolutionContext, m: LinearModel, single: bool) -> list[dict[str, A
     rhs = f"{tex(num(m.input_matrix))}\\,\\delta u" if m.inputs else "0"
     blocks.append(
         boxed(
-            f"{tex(num(m.mass))}{_column(c, chr(92) + 'ddot')} + {tex(num(m.damping))}{_column(c, chr(92) + 'dot')}"
-            f" + {tex(num(m.stiffness))}{_column(c, '')} = {rhs}"
+            f"{tex(num(m.mass))}{_column(c, 2)} + {tex(num(m.damping))}{_column(c, 1)}"
+            f" + {tex(num(m.stiffness))}{_column(c, 0)} = {rhs}"
         )
     )
     blocks.append(
@@ -205,11 +223,12 @@ def _model(c: SolutionContext, m: LinearModel, single: bool) -> list[dict[str, A
     if m.modes is not None:
         for i, mode in enumerate(m.modes, start=1):
             blocks.append(para(*_mode(i, mode)))
-    elif m.conditions:
+    elif len(m.conditions) > 1:
         minors = ",\\quad ".join(f"\\Delta_{{{i}}} = {tex(num(x))}" for i, x in enumerate(m.conditions, start=1))
         blocks.append(para(text("The leading minors of "), math("K"), text(":")))
         blocks.append(display(minors))
     blocks.append(para(*_verdict(m)))
+    blocks += _where(c, m)
     return blocks
 
 
