@@ -7,8 +7,9 @@ from __future__ import annotations
 from typing import Any
 
 from tutgen.engine.analysis import LinearModel
+from tutgen.engine.analysis.equilibria import existence
 from tutgen.engine.derivation import Derivation
-from tutgen.render.jsonout import matrix, value, vector
+from tutgen.render.jsonout import expr_text, matrix, value, vector
 
 __all__ = ["analysis_results"]
 
@@ -19,6 +20,11 @@ def _complex(z: complex) -> list[float]:
 
 def _at(values: tuple[tuple[str, Any], ...], num: Any) -> dict[str, Any]:
     return {name: value(num(v)) for name, v in values}
+
+
+def _relations(relations: Any) -> list[str]:
+    """Inequalities in the spec grammar, e.g. ``g > R*omega**2``."""
+    return [f"{expr_text(w.lhs)} {w.rel_op} {expr_text(w.rhs)}" for w in relations]
 
 
 def _linear(m: LinearModel, num: Any) -> dict[str, Any]:
@@ -38,6 +44,8 @@ def _linear(m: LinearModel, num: Any) -> dict[str, Any]:
         out["characteristic_polynomial"] = value(num(m.characteristic))
     if m.conditions:
         out["stiffness_minors"] = [value(num(c)) for c in m.conditions]
+    if m.stable_where:
+        out["stable_where"] = _relations(m.stable_where)
     if m.modes is not None:
         out["modes"] = [
             {
@@ -66,8 +74,15 @@ def analysis_results(d: Derivation) -> dict[str, Any]:
             "method": eq.method,
             "free_coordinates": list(eq.free),
             "solutions": [
-                {"at": _at(sol, num), "stability": m.verdict, "reason": m.reason}
+                {
+                    "at": _at(sol, num),
+                    "stability": m.verdict,
+                    "reason": m.reason,
+                    **({"exists_where": _relations([x for _, v in sol for x in existence(v)])} if exists else {}),
+                    **({"stable_where": _relations(m.stable_where)} if m.stable_where else {}),
+                }
                 for sol, m in zip(eq.solutions, a.classified, strict=False)
+                for exists in [any(existence(v) for _, v in sol)]
             ],
             **({"remark": eq.remark} if eq.remark else {}),
         }
