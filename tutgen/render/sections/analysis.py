@@ -13,6 +13,7 @@ from tutgen.engine.analysis.equilibria import existence
 from tutgen.engine.analysis.linear import S
 from tutgen.engine.steps import StepKind
 from tutgen.render.blocks import Part, SolutionContext, boxed, display, math, para, section, strong, text
+from tutgen.render.wording import engine_parts
 
 __all__ = ["equilibria", "linearization"]
 
@@ -27,9 +28,10 @@ def _at(c: SolutionContext, values: tuple[tuple[str, sp.Expr], ...], free: tuple
     return ",\\ ".join(shown)
 
 
-def _verdict(m: LinearModel) -> list[Part]:
+def _verdict(c: SolutionContext, m: LinearModel) -> list[Part]:
+    """The verdict in bold, then its reason (tutgen's sentence, its names and K, D typeset)."""
     label = "Stable under a condition" if m.verdict == "conditional" else m.verdict.capitalize()
-    return [strong(label), text(f": {m.reason}.")]
+    return [strong(label), text(": "), *engine_parts(f"{m.reason}.", c.tex)]
 
 
 def _where(c: SolutionContext, m: LinearModel) -> list[dict[str, Any]]:
@@ -86,7 +88,7 @@ def equilibria(c: SolutionContext) -> dict[str, Any] | None:
             sec["blocks"].append(para(text("It exists only where "), math(shown), text(" (a real angle).")))
         k = "\\left.\\frac{\\partial (G - Q)}{\\partial q}\\right|_{q_{0," + str(i) + "}}"
         sec["blocks"].append(display(f"K = {k} = {tex(num(m.stiffness))}"))
-        sec["blocks"].append(para(*_verdict(m)))
+        sec["blocks"].append(para(*_verdict(c, m)))
         sec["blocks"] += _where(c, m)
     if angles:
         names = [math(q.latex) for q in angles]
@@ -193,7 +195,8 @@ def _model(c: SolutionContext, m: LinearModel, single: bool) -> list[dict[str, A
         shown.append(f"B = \\frac{{\\partial Q}}{{\\partial u}} = {tex(num(m.input_matrix))},\\ u = {u}")
     for line in shown:
         blocks.append(display(line))
-    rhs = f"{tex(num(m.input_matrix))}\\,\\delta u" if m.inputs else "0"
+    du = "\\begin{bmatrix}" + " \\\\ ".join(f"\\delta {tex(u)}" for u in m.inputs) + "\\end{bmatrix}"
+    rhs = f"{tex(num(m.input_matrix))}{du}" if m.inputs else "0"
     blocks.append(
         boxed(
             f"{tex(num(m.mass))}{_column(c, 2)} + {tex(num(m.damping))}{_column(c, 1)}"
@@ -227,7 +230,7 @@ def _model(c: SolutionContext, m: LinearModel, single: bool) -> list[dict[str, A
         minors = ",\\quad ".join(f"\\Delta_{{{i}}} = {tex(num(x))}" for i, x in enumerate(m.conditions, start=1))
         blocks.append(para(text("The leading minors of "), math("K"), text(":")))
         blocks.append(display(minors))
-    blocks.append(para(*_verdict(m)))
+    blocks.append(para(*_verdict(c, m)))
     blocks += _where(c, m)
     return blocks
 
