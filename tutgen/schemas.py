@@ -251,6 +251,39 @@ _LINEAR_MODEL = {
         "reason",
     ],
 }
+_MOMENTUM = {
+    "type": "object",
+    "properties": {
+        "bodies": {
+            "type": "object",
+            "additionalProperties": {
+                "type": "object",
+                "properties": {k: _VEC3 for k in ("linear", "angular_com", "angular_com_body", "angular_origin")},
+                "required": ["linear", "angular_com", "angular_com_body", "angular_origin"],
+            },
+        },
+        **{
+            k: _VEC3
+            for k in (
+                "linear",
+                "angular_origin",
+                "angular_origin_rate",
+                "gravity_moment",
+                "support_moment",
+                "steady_support_moment",
+            )
+        },
+        "conserved": {
+            "type": "array",
+            "items": {
+                "type": "object",
+                "properties": {"name": {"type": "string"}, "value": _VALUE, "why": {"type": "string"}},
+                "required": ["name", "value", "why"],
+            },
+        },
+    },
+    "required": ["bodies", "linear", "angular_origin", "angular_origin_rate", "support_moment", "conserved"],
+}
 _RESULTS = {
     "type": "object",
     "properties": {
@@ -281,6 +314,7 @@ _RESULTS = {
         "newton_euler": _NEWTON_EULER,
         "equilibria": _EQUILIBRIA,
         "linearization": {"type": "array", "items": _LINEAR_MODEL},
+        "momentum": _MOMENTUM,
     },
 }
 _FIGURE = {

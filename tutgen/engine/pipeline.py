@@ -109,7 +109,7 @@ def derive(system: System, method: str | None = None) -> Derivation:
         d = _serial_route(system, methods, inertia, principal)
     else:
         d = _general_route(system, methods, inertia, principal, {kind for kind, _ in plan})
-    if {kind for kind, _ in plan} & {StepKind.EQUILIBRIA, StepKind.LINEARIZATION}:
+    if {kind for kind, _ in plan} & {StepKind.EQUILIBRIA, StepKind.LINEARIZATION, StepKind.MOMENTUM}:
         d = _analysis(d, {kind for kind, _ in plan})
     checkpoint("steps")
     kinds = [kind for kind, _ in plan]
@@ -121,7 +121,7 @@ def _analysis(d: Derivation, kinds: set[StepKind]) -> Derivation:
     (:mod:`~tutgen.engine.analysis`), with the finite-difference check of each linear model."""
     from tutgen.engine.analysis import analyse
 
-    a = analyse(d, StepKind.EQUILIBRIA in kinds, StepKind.LINEARIZATION in kinds)
+    a = analyse(d, StepKind.EQUILIBRIA in kinds, StepKind.LINEARIZATION in kinds, StepKind.MOMENTUM in kinds)
     models = {id(m): m for m in (*a.classified, *a.linear)}.values()
     checks = tuple(m.check for m in models if m.check is not None)
     for check in checks:

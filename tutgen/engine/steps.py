@@ -58,6 +58,7 @@ class StepKind(StrEnum):
     CHRISTOFFEL = "christoffel"  # each symbol from its definition, then C as a vector
     EQUILIBRIA = "equilibria"  # the rest configurations G(q) = Q(q, 0), each classified (engine/analysis)
     LINEARIZATION = "linearization"  # M dq_ddot + D dq_dot + K dq = B du about an equilibrium, its modes
+    MOMENTUM = "momentum"  # p, H_G, H_O per body and in total, dH_O/dt, conserved quantities
 
 
 #: teaching order: every step comes after the steps it depends on (the serial arm's equations of
@@ -83,6 +84,8 @@ _WHY = {
     StepKind.EQUILIBRIA: "At rest q_dot = q_ddot = 0, so the equations of motion reduce to G(q) = Q(q, 0).",
     StepKind.LINEARIZATION: "Small motions about an equilibrium obey the first-order expansion of the equations "
     "of motion: M dq_ddot + D dq_dot + K dq = B du.",
+    StepKind.MOMENTUM: "Each body's momentum and angular momentum from its velocities and inertia; the rate of "
+    "change of the total angular momentum about O is the moment of the external forces about O.",
 }
 
 _QUANTITY = {
@@ -100,6 +103,7 @@ _QUANTITY = {
     StepKind.CHRISTOFFEL: "Christoffel symbols and C",
     StepKind.EQUILIBRIA: "equilibria",
     StepKind.LINEARIZATION: "linear model",
+    StepKind.MOMENTUM: "momentum",
 }
 
 
@@ -170,6 +174,7 @@ def _depends(system: System, methods: tuple[Method, ...], large: bool) -> dict[S
         K.EQUILIBRIA: (K.MATRIX_FORM,),
         # about the spec's equilibrium, or about each one found
         K.LINEARIZATION: (K.MATRIX_FORM,) if has_about else (K.EQUILIBRIA,),
+        K.MOMENTUM: (K.LAGRANGIAN,),
     }
 
 
@@ -190,6 +195,7 @@ _ASKED = {
     Ask.CHRISTOFFEL: (StepKind.CHRISTOFFEL,),
     Ask.EQUILIBRIA: (StepKind.EQUILIBRIA,),
     Ask.LINEARIZATION: (StepKind.LINEARIZATION,),
+    Ask.MOMENTUM: (StepKind.MOMENTUM,),
 }
 
 
@@ -247,6 +253,8 @@ def _applies(system: System, kind: StepKind, large: bool) -> bool:
         return _newton_euler_applies(system) and not large
     if kind is StepKind.POTENTIAL_ENERGY:
         return _has_potential(system)
+    if kind is StepKind.MOMENTUM:  # velocities of bodies: not the serial arm's route, not a given T
+        return system.kinetic_energy is None and bool(system.bodies) and not large
     return True
 
 
@@ -372,7 +380,7 @@ def _equations(d: Derivation, kind: StepKind, large: bool) -> tuple[Equation, ..
             Equation(sp.Derivative(H_ENTRY[i + 1, j + 1], q[k]), v)
             for (i, j, k), v in mass_matrix_derivatives(d).items()
         )
-    if kind in (K.EQUILIBRIA, K.LINEARIZATION):
+    if kind in (K.EQUILIBRIA, K.LINEARIZATION, K.MOMENTUM):
         return analysis_equations(d, kind)
     if kind is K.CHRISTOFFEL:
         if large:
@@ -387,6 +395,23 @@ def analysis_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
     a = d.analysis
     if a is None:
         return ()
+    if kind is StepKind.MOMENTUM:
+        if a.momentum is None:
+            return ()
+        mo = a.momentum
+        out = [
+            e
+            for b in mo.bodies
+            for e in (
+                Equation(_name(f"p_{b.name}"), b.linear),
+                Equation(_name(f"H_G_{b.name}"), b.angular_com),
+                Equation(_name(f"H_O_{b.name}"), b.angular_origin),
+            )
+        ]
+        out += [Equation(_name("p"), mo.linear), Equation(_name("H_O"), mo.angular_origin)]
+        out += [Equation(_name("dH_O_dt"), mo.angular_rate), Equation(_name("M_O_supports"), mo.support_moment)]
+        out += [Equation(_name(c.name), c.value) for c in mo.conserved]
+        return tuple(out)
     if kind is StepKind.EQUILIBRIA:
         if a.equilibria is None:
             return ()

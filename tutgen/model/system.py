@@ -202,11 +202,12 @@ class Ask(StrEnum):
     CHRISTOFFEL = "christoffel"
     EQUILIBRIA = "equilibria"
     LINEARIZATION = "linearization"
+    MOMENTUM = "momentum"
 
 
 #: the items of ``ask`` that a spec must name: the default (everything that applies) is the equations
 #: of motion and what leads to them, not the analysis that follows them (tutgen.engine.analysis)
-OPT_IN_ASK = frozenset({Ask.EQUILIBRIA, Ask.LINEARIZATION})
+OPT_IN_ASK = frozenset({Ask.EQUILIBRIA, Ask.LINEARIZATION, Ask.MOMENTUM})
 
 
 class Method(StrEnum):

@@ -27,6 +27,7 @@ from tutgen.render.sections.inertia import mass_properties
 from tutgen.render.sections.kinematics import kinematics
 from tutgen.render.sections.lagrange import equations_of_motion, lagrange_equations
 from tutgen.render.sections.matrix import christoffel_symbols, matrix_form
+from tutgen.render.sections.momentum import momentum
 from tutgen.render.sections.newton_euler import newton_euler
 from tutgen.render.wording import engine_parts
 from tutgen.spec.units import decimal_text, in_unit
@@ -54,6 +55,7 @@ BUILDERS: dict[StepKind, tuple[Builder, ...]] = {
     StepKind.CHRISTOFFEL: (christoffel_symbols,),
     StepKind.EQUILIBRIA: (equilibria,),
     StepKind.LINEARIZATION: (linearization,),
+    StepKind.MOMENTUM: (momentum,),
 }
 
 

@@ -40,6 +40,9 @@ ASKED = {
     Ask.EQUATIONS_OF_MOTION: "the equations of motion",
     Ask.MATRIX_FORM: "the matrix form $H(q)\\ddot q + C(q,\\dot q) + G(q) = Q$",
     Ask.CHRISTOFFEL: "the Christoffel symbols",
+    Ask.EQUILIBRIA: "the equilibria and their stability",
+    Ask.LINEARIZATION: "the linear model about the equilibrium, its eigenvalues and stability",
+    Ask.MOMENTUM: "the linear and angular momentum of each body and in total",
 }
 
 

@@ -582,6 +582,7 @@ AskItem = Literal[
     "christoffel",
     "equilibria",
     "linearization",
+    "momentum",
 ]
 
 MethodItem = Literal["lagrange", "newton_euler"]

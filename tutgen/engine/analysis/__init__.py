@@ -13,9 +13,10 @@ from dataclasses import dataclass
 
 from tutgen.engine.analysis.equilibria import Equilibria, check_given, find_equilibria, rest_residual
 from tutgen.engine.analysis.linear import LinearModel, Mode, linearize
+from tutgen.engine.analysis.momentum import Momentum, momentum
 from tutgen.engine.derivation import Derivation
 
-__all__ = ["MAX_LINEARIZED", "Analysis", "Equilibria", "LinearModel", "Mode", "analyse"]
+__all__ = ["MAX_LINEARIZED", "Analysis", "Equilibria", "LinearModel", "Mode", "Momentum", "analyse"]
 
 #: at most this many equilibria found are linearised (a spec names the one it wants with `about`)
 MAX_LINEARIZED = 6
@@ -30,11 +31,15 @@ class Analysis:
     equilibria: Equilibria | None
     classified: tuple[LinearModel, ...]
     linear: tuple[LinearModel, ...]
+    momentum: Momentum | None = None  # `ask: [momentum]`
 
 
-def analyse(d: Derivation, equilibria: bool, linearization: bool) -> Analysis:
-    """The equilibria and/or the linear models of a derivation (see the module's docstring)."""
+def analyse(d: Derivation, equilibria: bool, linearization: bool, with_momentum: bool = False) -> Analysis:
+    """The equilibria, the linear models and the momenta a derivation asks for (see the module's docstring)."""
     system = d.system
+    mo = momentum(d) if with_momentum else None
+    if not (equilibria or linearization):
+        return Analysis(None, (), (), mo)
     about = system.analysis.about if system.analysis is not None else None
     found = find_equilibria(d) if equilibria or about is None else None
     if found is None:
@@ -43,4 +48,4 @@ def analyse(d: Derivation, equilibria: bool, linearization: bool) -> Analysis:
     linear: tuple[LinearModel, ...] = ()
     if linearization:
         linear = (linearize(d, about),) if about is not None else classified
-    return Analysis(found if equilibria else None, classified if equilibria else (), linear)
+    return Analysis(found if equilibria else None, classified if equilibria else (), linear, mo)

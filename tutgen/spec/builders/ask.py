@@ -32,9 +32,15 @@ def build_ask(ctx: Context, dynamic: bool) -> frozenset[Ask]:
                     "`inertia` needs bodies, and the spec gives its energy (`energy`) instead; expected "
                     "the bodies, or no `inertia` in `ask`",
                 )
+            elif a is Ask.MOMENTUM and ctx.doc.energy is not None and not ctx.doc.bodies:
+                ctx.error(
+                    ("ask", i),
+                    "`momentum` needs bodies, and the spec gives its energy (`energy`) instead; expected "
+                    "the bodies, or no `momentum` in `ask`",
+                )
             else:
                 asked.add(a)
-        if ctx.doc.analysis is not None and dynamic and not asked & OPT_IN_ASK:
+        if ctx.doc.analysis is not None and dynamic and not asked & {Ask.EQUILIBRIA, Ask.LINEARIZATION}:
             ctx.error(
                 ("analysis",),
                 "`analysis` gives the equilibrium and inputs of `equilibria` and `linearization`, and `ask` "
