@@ -274,8 +274,8 @@ def _finite_difference_check(
     return Check(
         "linearization_matches_finite_differences",
         passed,
-        "the linear model's M, D and K equal central differences of the equations of motion at the "
-        f"equilibrium (relative difference {'below' if passed else 'above'} 1e-5)",
+        "M, D and K of the linear model equal central differences of the equations of motion at the "
+        f"equilibrium ({'to' if passed else 'not to'} 5 significant figures)",
     )
 
 
