@@ -222,3 +222,28 @@ def test_default_ask_has_no_analysis() -> None:
     d = derive(system_of(spec))
     assert d.analysis is None
     assert not {"equilibria", "linearization"} & {st.kind.value for st in d.steps}
+
+
+def test_transcendental_equilibria_are_found_numerically_in_the_box() -> None:
+    """G = theta - 2 sin(theta) has no closed-form roots: every root in one turn, found numerically,
+    each checked against the residual, and classified by the sign of U'' = 1 - 2 cos(theta)."""
+    spec = {
+        "tutgen": 1,
+        "title": "transcendental well",
+        "parameters": {"J": "1 kg*m^2", "k": "1 N*m"},
+        "coordinates": {"theta": {"dimension": "angle"}},
+        "energy": {"kinetic": "J*theta_dot**2/2", "potential": "k*(2*cos(theta) + theta**2/2)"},
+        "ask": ["equilibria"],
+    }
+    d = derive(system_of(spec))
+    eq = d.analysis.equilibria
+    assert eq.method == "numeric"
+    roots = sorted(float(dict(s)["theta"]) for s in eq.solutions)
+    assert len(roots) == 3 and roots[1] == pytest.approx(0.0, abs=1e-9)
+    for x in roots:
+        assert x - 2 * math.sin(x) == pytest.approx(0.0, abs=1e-9)
+    verdicts = {
+        round(float(dict(s)["theta"]), 6): m.verdict for s, m in zip(eq.solutions, d.analysis.classified, strict=True)
+    }
+    assert verdicts[round(roots[1], 6)] == "unstable"
+    assert verdicts[round(roots[0], 6)] == verdicts[round(roots[2], 6)] == "stable"

@@ -164,6 +164,10 @@ def _solve_one(equation: sp.Expr, x: sp.Symbol) -> list[sp.Expr] | None:
                 for v in sp.solve(in_sin, s):
                     roots += [sp.asin(v)] if sp.asin(v) == sp.pi / 2 else [sp.asin(v), sp.pi - sp.asin(v)]
             else:
+                trig = {f: sp.Dummy() for f in factor.atoms(sp.sin, sp.cos) if f.has(x)}
+                if trig and factor.xreplace(trig).has(x):
+                    return None  # x both inside and outside sin/cos (x - 2 sin x): no closed form, and
+                    # sympy's solve spends many seconds finding that out
                 roots += sp.solve(factor, x)
         except (NotImplementedError, ValueError, TypeError):
             return None
