@@ -327,6 +327,108 @@ _NEWTON_EULER = {
     },
     "required": ["method", "equations_of_motion", "agrees_with_lagrange"],
 }
+_COMPLEX = {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2, "description": "[re, im]"}
+_STABILITY = {"enum": ["asymptotically stable", "stable", "unstable", "conditional", "undetermined"]}
+_AT = {"type": "object", "additionalProperties": _VALUE, "description": "Each coordinate's value."}
+_EQUILIBRIA = {
+    "type": "object",
+    "properties": {
+        "residual": _VECTOR,
+        "method": {"enum": ["symbolic", "numeric", "none"]},
+        "free_coordinates": {"type": "array", "items": {"type": "string"}},
+        "solutions": {
+            "type": "array",
+            "items": {
+                "type": "object",
+                "properties": {
+                    "at": _AT,
+                    "stability": _STABILITY,
+                    "reason": {"type": "string"},
+                    "exists_where": {"type": "array", "items": _EXPR},
+                    "stable_where": {"type": "array", "items": _EXPR},
+                },
+                "required": ["at", "stability", "reason"],
+            },
+        },
+        "remark": {"type": "string"},
+    },
+    "required": ["residual", "method", "free_coordinates", "solutions"],
+}
+_MODE = {
+    "type": "object",
+    "properties": {
+        "eigenvalue": _COMPLEX,
+        "natural_frequency": {"type": "number", "description": "|lambda|, rad/s"},
+        "frequency_hz": {"type": "number"},
+        "damping_ratio": {"type": ["number", "null"]},
+        "shape": {"type": "array", "items": _COMPLEX},
+    },
+    "required": ["eigenvalue", "natural_frequency", "frequency_hz", "damping_ratio", "shape"],
+}
+_LINEAR_MODEL = {
+    "type": "object",
+    "properties": {
+        "about": _AT,
+        "inputs": {"type": "array", "items": {"type": "string"}},
+        "mass_matrix": _MATRIX,
+        "damping_matrix": _MATRIX,
+        "stiffness_matrix": _MATRIX,
+        "input_matrix": _MATRIX,
+        "state_matrix": _MATRIX,
+        "state_input_matrix": _MATRIX,
+        "stability": _STABILITY,
+        "reason": {"type": "string"},
+        "characteristic_polynomial": _VALUE,
+        "stiffness_minors": _VECTOR,
+        "stable_where": {"type": "array", "items": _EXPR},
+        "modes": {"type": "array", "items": _MODE},
+    },
+    "required": [
+        "about",
+        "inputs",
+        "mass_matrix",
+        "damping_matrix",
+        "stiffness_matrix",
+        "input_matrix",
+        "state_matrix",
+        "state_input_matrix",
+        "stability",
+        "reason",
+    ],
+}
+_MOMENTUM = {
+    "type": "object",
+    "properties": {
+        "bodies": {
+            "type": "object",
+            "additionalProperties": {
+                "type": "object",
+                "properties": {k: _VEC3 for k in ("linear", "angular_com", "angular_com_body", "angular_origin")},
+                "required": ["linear", "angular_com", "angular_com_body", "angular_origin"],
+            },
+        },
+        **{
+            k: _VEC3
+            for k in (
+                "linear",
+                "angular_origin",
+                "angular_origin_rate",
+                "gravity_moment",
+                "support_moment",
+                "steady_support_moment",
+            )
+        },
+        "conserved": {
+            "type": "array",
+            "items": {
+                "type": "object",
+                "properties": {"name": {"type": "string"}, "value": _VALUE, "why": {"type": "string"}},
+                "required": ["name", "value", "why"],
+            },
+        },
+    },
+    "required": ["bodies", "linear", "angular_origin", "angular_origin_rate", "support_moment", "conserved"],
+}
 _RESULTS = {
     "type": "object",
     "properties": {
@@ -355,6 +457,9 @@ _RESULTS = {
         "christoffel": _SYMBOLS,
         "christoffel_first_kind": _SYMBOLS,
         "newton_euler": _NEWTON_EULER,
+        "equilibria": _EQUILIBRIA,
+        "linearization": {"type": "array", "items": _LINEAR_MODEL},
+        "momentum": _MOMENTUM,
     },
 }
 _FIGURE = {

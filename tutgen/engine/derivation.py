@@ -20,6 +20,7 @@ from tutgen.model.simulation import SimulationSummary
 from tutgen.model.system import Method, System
 
 if TYPE_CHECKING:  # newton_euler.py imports this module
+    from tutgen.engine.analysis import Analysis
     from tutgen.engine.newton_euler import NewtonEuler
     from tutgen.engine.potential import PotentialSource
     from tutgen.engine.recursive import NestedDynamics
@@ -99,6 +100,8 @@ class Derivation:
     # `ask: [simulation]`: the run of the spec's `simulate` section, attached after the derivation by
     # tutgen/sim/solution.py (the engine does not integrate); None until then, and when not asked
     simulation: SimulationSummary | None = None
+    # `ask: [equilibria, linearization]`: the rest configurations and the linear models (engine/analysis)
+    analysis: Analysis | None = None
 
     def has_step(self, kind: str) -> bool:
         """Whether the worked solution has a step of this kind (a :class:`~tutgen.engine.steps.StepKind`)."""

@@ -110,9 +110,27 @@ def derive(system: System, method: str | None = None) -> Derivation:
         d = _serial_route(system, methods, inertia, principal)
     else:
         d = _general_route(system, methods, inertia, principal, {kind for kind, _ in plan})
+    if {kind for kind, _ in plan} & {StepKind.EQUILIBRIA, StepKind.LINEARIZATION, StepKind.MOMENTUM}:
+        d = _analysis(d, {kind for kind, _ in plan})
     checkpoint("steps")
     kinds = [kind for kind, _ in plan]
     return dataclasses.replace(d, checks=reported_checks(d.checks, kinds), steps=record_steps(d, plan, large))
+
+
+def _analysis(d: Derivation, kinds: set[StepKind]) -> Derivation:
+    """Issue 18's stage after the equations of motion: equilibria and linear models
+    (:mod:`~tutgen.engine.analysis`), with the finite-difference check of each linear model."""
+    from tutgen.engine.analysis import analyse
+
+    a = analyse(d, StepKind.EQUILIBRIA in kinds, StepKind.LINEARIZATION in kinds, StepKind.MOMENTUM in kinds)
+    models = {id(m): m for m in (*a.classified, *a.linear)}.values()
+    checks = tuple(m.check for m in models if m.check is not None)
+    for check in checks:
+        if not check.passed:
+            raise DerivationError(
+                f"internal check failed: {check.detail}; please report this spec as a tutgen bug", d.system.origin
+            )
+    return dataclasses.replace(d, analysis=a, checks=(*d.checks, *checks[:1]))
 
 
 def derive_with_deadline(

@@ -57,6 +57,9 @@ class StepKind(StrEnum):
     MASS_MATRIX_DERIVATIVES = "mass_matrix_derivatives"  # the non-zero dH_ij/dq_k
     CHRISTOFFEL = "christoffel"  # each symbol from its definition, then C as a vector
     SIMULATION = "simulation"  # the equations of motion integrated numerically: plots, energy drift
+    EQUILIBRIA = "equilibria"  # the rest configurations G(q) = Q(q, 0), each classified (engine/analysis)
+    LINEARIZATION = "linearization"  # M dq_ddot + D dq_dot + K dq = B du about an equilibrium, its modes
+    MOMENTUM = "momentum"  # p, H_G, H_O per body and in total, dH_O/dt, conserved quantities
 
 
 #: teaching order: every step comes after the steps it depends on (the serial arm's equations of
@@ -81,6 +84,11 @@ _WHY = {
     StepKind.CHRISTOFFEL: "Each Christoffel symbol from its definition; C is their contraction with the rates.",
     StepKind.SIMULATION: "The equations of motion integrated numerically from the initial state: the "
     "coordinates, their rates and the energy over time.",
+    StepKind.EQUILIBRIA: "At rest q_dot = q_ddot = 0, so the equations of motion reduce to G(q) = Q(q, 0).",
+    StepKind.LINEARIZATION: "Small motions about an equilibrium obey the first-order expansion of the equations "
+    "of motion: M dq_ddot + D dq_dot + K dq = B du.",
+    StepKind.MOMENTUM: "Each body's momentum and angular momentum from its velocities and inertia; the rate of "
+    "change of the total angular momentum about O is the moment of the external forces about O.",
 }
 
 _QUANTITY = {
@@ -97,6 +105,9 @@ _QUANTITY = {
     StepKind.MASS_MATRIX_DERIVATIVES: "dH/dq",
     StepKind.CHRISTOFFEL: "Christoffel symbols and C",
     StepKind.SIMULATION: "q(t), q_dot(t) and the energy",
+    StepKind.EQUILIBRIA: "equilibria",
+    StepKind.LINEARIZATION: "linear model",
+    StepKind.MOMENTUM: "momentum",
 }
 
 
@@ -149,6 +160,7 @@ def _depends(system: System, methods: tuple[Method, ...], large: bool) -> dict[S
         if Method.NEWTON_EULER in methods and _newton_euler_applies(system):
             eom_needs.append(K.NEWTON_EULER)
     ne_needs = [K.INERTIA, K.KINEMATICS] if _has_rotational_inertia(system) else [K.KINEMATICS]
+    has_about = system.analysis is not None and system.analysis.about is not None
     form_needs = [K.MASS_MATRIX] + ([K.POTENTIAL_ENERGY] if _has_potential(system) else [])
     return {
         K.INERTIA: (),
@@ -164,6 +176,10 @@ def _depends(system: System, methods: tuple[Method, ...], large: bool) -> dict[S
         K.MASS_MATRIX_DERIVATIVES: (K.MASS_MATRIX,),
         K.CHRISTOFFEL: (K.MASS_MATRIX_DERIVATIVES,),
         K.SIMULATION: (K.EQUATIONS_OF_MOTION,),  # what is integrated (the run itself: tutgen/sim/solution.py)
+        K.EQUILIBRIA: (K.MATRIX_FORM,),
+        # about the spec's equilibrium, or about each one found
+        K.LINEARIZATION: (K.MATRIX_FORM,) if has_about else (K.EQUILIBRIA,),
+        K.MOMENTUM: (K.LAGRANGIAN,),
     }
 
 
@@ -183,6 +199,9 @@ _ASKED = {
     Ask.MATRIX_FORM: (StepKind.MASS_MATRIX, StepKind.MATRIX_FORM),
     Ask.CHRISTOFFEL: (StepKind.CHRISTOFFEL,),
     Ask.SIMULATION: (StepKind.SIMULATION,),
+    Ask.EQUILIBRIA: (StepKind.EQUILIBRIA,),
+    Ask.LINEARIZATION: (StepKind.LINEARIZATION,),
+    Ask.MOMENTUM: (StepKind.MOMENTUM,),
 }
 
 
@@ -240,6 +259,8 @@ def _applies(system: System, kind: StepKind, large: bool) -> bool:
         return _newton_euler_applies(system) and not large
     if kind is StepKind.POTENTIAL_ENERGY:
         return _has_potential(system)
+    if kind is StepKind.MOMENTUM:  # velocities of bodies: not the serial arm's route, not a given T
+        return system.kinetic_energy is None and bool(system.bodies) and not large
     return True
 
 
@@ -365,11 +386,56 @@ def _equations(d: Derivation, kind: StepKind, large: bool) -> tuple[Equation, ..
             Equation(sp.Derivative(H_ENTRY[i + 1, j + 1], q[k]), v)
             for (i, j, k), v in mass_matrix_derivatives(d).items()
         )
+    if kind in (K.EQUILIBRIA, K.LINEARIZATION, K.MOMENTUM):
+        return analysis_equations(d, kind)
     if kind is K.CHRISTOFFEL:
         if large:
             return _pairs((_name("C"), d.coriolis_vector))
         return (*christoffel_definitions(d), *_pairs((_name("C"), d.coriolis_vector)))
     return ()
+
+
+def analysis_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
+    """The equilibria step: G - Q at rest, then each equilibrium q0_i (every coordinate's value); the
+    linearization step: M_i, D_i, K_i, B_i and A_i of each linear model, 1-based as the equilibria."""
+    a = d.analysis
+    if a is None:
+        return ()
+    if kind is StepKind.MOMENTUM:
+        if a.momentum is None:
+            return ()
+        mo = a.momentum
+        out = [
+            e
+            for b in mo.bodies
+            for e in (
+                Equation(_name(f"p_{b.name}"), b.linear),
+                Equation(_name(f"H_G_{b.name}"), b.angular_com),
+                Equation(_name(f"H_O_{b.name}"), b.angular_origin),
+            )
+        ]
+        out += [Equation(_name("p"), mo.linear), Equation(_name("H_O"), mo.angular_origin)]
+        out += [Equation(_name("dH_O_dt"), mo.angular_rate), Equation(_name("M_O_supports"), mo.support_moment)]
+        out += [Equation(_name(c.name), c.value) for c in mo.conserved]
+        return tuple(out)
+    if kind is StepKind.EQUILIBRIA:
+        if a.equilibria is None:
+            return ()
+        out = [Equation(_name("G_minus_Q"), a.equilibria.residual)]
+        for i, sol in enumerate(a.equilibria.solutions, start=1):
+            out.append(Equation(_name(f"q0_{i}"), sp.ImmutableMatrix([v for _, v in sol])))
+        return tuple(out)
+    out = []
+    for i, m in enumerate(a.linear, start=1):
+        out += [
+            Equation(_name(f"q0_{i}"), sp.ImmutableMatrix([v for _, v in m.about])),
+            Equation(_name(f"M_{i}"), m.mass),
+            Equation(_name(f"D_{i}"), m.damping),
+            Equation(_name(f"K_{i}"), m.stiffness),
+            *([Equation(_name(f"B_{i}"), m.input_matrix)] if m.inputs else []),
+            Equation(_name(f"A_{i}"), m.state_matrix),
+        ]
+    return tuple(out)
 
 
 def christoffel_definitions(d: Derivation) -> tuple[Equation, ...]:
@@ -424,6 +490,7 @@ _CHECK_ABOUT = {
     "symmetric_mass_matrix": (StepKind.MASS_MATRIX,),
     "positive_semidefinite_mass_matrix": (StepKind.MASS_MATRIX,),
     "dimensional_consistency": (StepKind.EQUATIONS_OF_MOTION, StepKind.LAGRANGE_EQUATIONS),
+    "linearization_matches_finite_differences": (StepKind.EQUILIBRIA, StepKind.LINEARIZATION),
 }
 
 

@@ -18,6 +18,7 @@ from enum import StrEnum
 import sympy as sp
 
 from tutgen.errors import Location
+from tutgen.model.analysis import Analysis
 from tutgen.model.figure import FigureConfig
 from tutgen.model.marking import Marking
 from tutgen.model.simulation import Simulation
@@ -200,6 +201,15 @@ class Ask(StrEnum):
     MATRIX_FORM = "matrix_form"
     CHRISTOFFEL = "christoffel"
     SIMULATION = "simulation"  # the plots of a run of the spec's `simulate:` section (never by default)
+    EQUILIBRIA = "equilibria"
+    LINEARIZATION = "linearization"
+    MOMENTUM = "momentum"
+
+
+#: the items of ``ask`` that a spec must name: the default (everything that applies) is the equations
+#: of motion and what leads to them, not the analysis that follows them (tutgen.engine.analysis) nor a
+#: numerical simulation (tutgen.sim)
+OPT_IN_ASK = frozenset({Ask.SIMULATION, Ask.EQUILIBRIA, Ask.LINEARIZATION, Ask.MOMENTUM})
 
 
 class Method(StrEnum):
@@ -306,6 +316,7 @@ class System:
     question_title: str | None = None  # the question sheet's title, when it differs from ``title``
     given: Given = field(default_factory=Given)
     conventions: Conventions = field(default_factory=Conventions)
+    analysis: Analysis | None = None  # the spec's `analysis:` section (equilibrium, inputs)
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

@@ -12,6 +12,8 @@ from typing import Any
 
 import sympy as sp
 
+from tutgen.engine.analysis import LinearModel
+from tutgen.engine.analysis.equilibria import existence
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.ne_types import PlanarNewtonEuler
 from tutgen.engine.newton_euler import NewtonEuler
@@ -157,6 +159,8 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
             results["christoffel_first_kind"] = _christoffel(d.christoffel_first_kind, num, large)
         if d.newton_euler is not None and Ask.EQUATIONS_OF_MOTION in ask:
             results["newton_euler"] = _newton_euler(d.newton_euler, num)
+        if d.analysis is not None:  # issue 18: equilibria, linear models, momentum (below)
+            results.update(analysis_results(d))
 
     out = {
         "tutgen": __version__,
@@ -324,3 +328,106 @@ def _program(d: Derivation, num: Any) -> dict[str, Any]:
 def dumps(doc: Any) -> str:
     """Deterministic JSON text: fixed key order (as built), two-space indent, trailing newline."""
     return json.dumps(doc, indent=2, ensure_ascii=False, allow_nan=False) + "\n"
+
+
+# ---------------------------------------------------------------------------------------------
+# Issue 18: results.equilibria, results.linearization and results.momentum
+# (docs/json-output.md#equilibria-and-linearization); complex numbers as [re, im]
+# ---------------------------------------------------------------------------------------------
+
+
+def _complex(z: complex) -> list[float]:
+    return [z.real + 0.0, z.imag + 0.0]
+
+
+def _at(values: tuple[tuple[str, Any], ...], num: Any) -> dict[str, Any]:
+    return {name: value(num(v)) for name, v in values}
+
+
+def _relations(relations: Any) -> list[str]:
+    """Inequalities in the spec grammar, e.g. ``g > R*omega**2``."""
+    return [f"{expr_text(w.lhs)} {w.rel_op} {expr_text(w.rhs)}" for w in relations]
+
+
+def _linear(m: LinearModel, num: Any) -> dict[str, Any]:
+    out: dict[str, Any] = {
+        "about": _at(m.about, num),
+        "inputs": [str(u) for u in m.inputs],
+        "mass_matrix": matrix(num(m.mass)),
+        "damping_matrix": matrix(num(m.damping)),
+        "stiffness_matrix": matrix(num(m.stiffness)),
+        "input_matrix": matrix(num(m.input_matrix)),
+        "state_matrix": matrix(num(m.state_matrix)),
+        "state_input_matrix": matrix(num(m.state_input)),
+        "stability": m.verdict,
+        "reason": m.reason,
+    }
+    if m.characteristic is not None:
+        out["characteristic_polynomial"] = value(num(m.characteristic))
+    if m.conditions:
+        out["stiffness_minors"] = [value(num(c)) for c in m.conditions]
+    if m.stable_where:
+        out["stable_where"] = _relations(m.stable_where)
+    if m.modes is not None:
+        out["modes"] = [
+            {
+                "eigenvalue": _complex(mode.eigenvalue),
+                "natural_frequency": mode.natural_frequency,  # rad/s
+                "frequency_hz": mode.frequency_hz,
+                "damping_ratio": mode.damping_ratio,
+                "shape": [_complex(x) for x in mode.shape],
+            }
+            for mode in m.modes
+        ]
+    return out
+
+
+def analysis_results(d: Derivation) -> dict[str, Any]:
+    """The keys ``equilibria`` and ``linearization`` of ``results``, those that were derived."""
+    a = d.analysis
+    if a is None:
+        return {}
+    num = d.numeric
+    out: dict[str, Any] = {}
+    if a.equilibria is not None:
+        eq = a.equilibria
+        out["equilibria"] = {
+            "residual": vector(num(eq.residual)),
+            "method": eq.method,
+            "free_coordinates": list(eq.free),
+            "solutions": [
+                {
+                    "at": _at(sol, num),
+                    "stability": m.verdict,
+                    "reason": m.reason,
+                    **({"exists_where": _relations([x for _, v in sol for x in existence(v)])} if exists else {}),
+                    **({"stable_where": _relations(m.stable_where)} if m.stable_where else {}),
+                }
+                for sol, m in zip(eq.solutions, a.classified, strict=False)
+                for exists in [any(existence(v) for _, v in sol)]
+            ],
+            **({"remark": eq.remark} if eq.remark else {}),
+        }
+    if a.linear:
+        out["linearization"] = [_linear(m, num) for m in a.linear]
+    if a.momentum is not None:
+        mo = a.momentum
+        out["momentum"] = {
+            "bodies": {
+                b.name: {
+                    "linear": vector(num(b.linear)),
+                    "angular_com": vector(num(b.angular_com)),
+                    "angular_com_body": vector(num(b.angular_com_body)),
+                    "angular_origin": vector(num(b.angular_origin)),
+                }
+                for b in mo.bodies
+            },
+            "linear": vector(num(mo.linear)),
+            "angular_origin": vector(num(mo.angular_origin)),
+            "angular_origin_rate": vector(num(mo.angular_rate)),
+            "gravity_moment": vector(num(mo.gravity_moment)),
+            "support_moment": vector(num(mo.support_moment)),
+            "steady_support_moment": vector(num(mo.steady_support_moment)),
+            "conserved": [{"name": q.name, "value": value(num(q.value)), "why": q.why} for q in mo.conserved],
+        }
+    return out

@@ -20,12 +20,14 @@ from tutgen.figure.view import figure_view
 from tutgen.model.system import System
 from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, prose, rich, unit_tex
 from tutgen.render.printer import TexPrinter, is_decimal_document
+from tutgen.render.sections.analysis import equilibria, linearization
 from tutgen.render.sections.arm import arm_table
 from tutgen.render.sections.energy import energies
 from tutgen.render.sections.inertia import mass_properties
 from tutgen.render.sections.kinematics import kinematics
 from tutgen.render.sections.lagrange import equations_of_motion, lagrange_equations
 from tutgen.render.sections.matrix import christoffel_symbols, matrix_form
+from tutgen.render.sections.momentum import momentum
 from tutgen.render.sections.newton_euler import newton_euler
 from tutgen.render.sections.simulation import simulation
 from tutgen.render.wording import engine_parts
@@ -53,6 +55,9 @@ BUILDERS: dict[StepKind, tuple[Builder, ...]] = {
     StepKind.MASS_MATRIX_DERIVATIVES: (christoffel_symbols,),
     StepKind.CHRISTOFFEL: (christoffel_symbols,),
     StepKind.SIMULATION: (simulation,),
+    StepKind.EQUILIBRIA: (equilibria,),
+    StepKind.LINEARIZATION: (linearization,),
+    StepKind.MOMENTUM: (momentum,),
 }
 
 

@@ -41,6 +41,9 @@ ASKED = {
     Ask.MATRIX_FORM: "the matrix form $H(q)\\ddot q + C(q,\\dot q) + G(q) = Q$",
     Ask.CHRISTOFFEL: "the Christoffel symbols",
     Ask.SIMULATION: "a numerical simulation of the motion: $q(t)$, $\\dot q(t)$ and the energy",
+    Ask.EQUILIBRIA: "the equilibria and their stability",
+    Ask.LINEARIZATION: "the linear model about the equilibrium, its eigenvalues and stability",
+    Ask.MOMENTUM: "the linear and angular momentum of each body and in total",
 }
 
 

@@ -581,6 +581,9 @@ AskItem = Literal[
     "matrix_form",
     "christoffel",
     "simulation",
+    "equilibria",
+    "linearization",
+    "momentum",
 ]
 
 MethodItem = Literal["lagrange", "newton_euler"]
@@ -608,6 +611,21 @@ class SimulateSpec(SpecModel):
         description="How many equally spaced instants the trajectory is written at (default 1001).",
         ge=2,
         le=1_000_000,
+    )
+
+
+class AnalysisSpec(SpecModel):
+    """Where the equilibria and the linearisation are taken (docs/spec-format.md#analysis)."""
+
+    about: dict[Name, Expr] | None = Field(
+        None,
+        description="The equilibrium to linearise about, e.g. {theta: pi} (coordinates not named are at 0); "
+        "without it, each equilibrium found is linearised.",
+    )
+    inputs: dict[Name, Expr] = Field(
+        default_factory=dict,
+        description="Parameters without a value that are inputs u, with their value at the equilibrium, e.g. "
+        "{F: 0}: the columns of the input matrix B. Other parameters without a value stay symbols.",
     )
 
 
@@ -714,6 +732,9 @@ class SpecDoc(SpecModel):
     )
     figure: FigureSpec | None = Field(None, description="How the figure is drawn, or the instructor's own picture.")
     simulate: SimulateSpec | None = Field(None, description="Initial conditions and inputs for `tutgen simulate`.")
+    analysis: AnalysisSpec | None = Field(
+        None, description="The equilibrium and the inputs of `ask: [equilibria, linearization]`."
+    )
     marking: dict[str, Any] | None = Field(
         None,
         description="What `tutgen check` marks: {ask: [result keys], tolerance: {rel_tol, abs_tol, rounded}, "

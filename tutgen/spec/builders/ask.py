@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from tutgen.model.system import Ask
+from tutgen.model.system import OPT_IN_ASK, Ask
 from tutgen.spec.builders.context import Context
 
 
@@ -12,8 +12,9 @@ def build_ask(ctx: Context, dynamic: bool) -> frozenset[Ask]:
 
     An item that does not apply is a problem at its place: anything but `inertia` without coordinates
     (nothing moves), `inertia` without bodies (a system given by its energy), `simulation` without a
-    `simulate` section that gives every coordinate its initial value. `simulation` is never asked by
-    default: it runs an integration (docs/simulate.md).
+    `simulate` section that gives every coordinate its initial value; so is an `analysis` section when
+    `ask` names neither `equilibria` nor `linearization`. `simulation` (it runs an integration,
+    docs/simulate.md) and the analysis items are never asked by default.
     """
     if ctx.doc.ask is not None:
         # coordinates set aside for a shape error (already reported) may be what is missing: no cascade
@@ -35,12 +36,26 @@ def build_ask(ctx: Context, dynamic: bool) -> frozenset[Ask]:
                 )
             elif a is Ask.SIMULATION and (missing := _without_initial_value(ctx)) is not None:
                 ctx.error(("ask", i), missing[0], missing[1])
+            elif a is Ask.MOMENTUM and ctx.doc.energy is not None and not ctx.doc.bodies:
+                ctx.error(
+                    ("ask", i),
+                    "`momentum` needs bodies, and the spec gives its energy (`energy`) instead; expected "
+                    "the bodies, or no `momentum` in `ask`",
+                )
             else:
                 asked.add(a)
+        if ctx.doc.analysis is not None and dynamic and not asked & {Ask.EQUILIBRIA, Ask.LINEARIZATION}:
+            ctx.error(
+                ("analysis",),
+                "`analysis` gives the equilibrium and inputs of `equilibria` and `linearization`, and `ask` "
+                "names neither",
+                "add `linearization` (or `equilibria`) to `ask`, or remove `analysis`",
+                key=True,
+            )
         return frozenset(asked)
     if not dynamic:
         return frozenset({Ask.INERTIA})
-    everything = set(Ask) - {Ask.SIMULATION}
+    everything = set(Ask) - OPT_IN_ASK  # the integration and the analysis after the equations of motion: by name
     if not ctx.doc.bodies:
         everything.discard(Ask.INERTIA)
     return frozenset(everything)

@@ -14,6 +14,7 @@ from typing import Any
 from tutgen.errors import SpecErrors
 from tutgen.model.system import System
 from tutgen.spec import schema as S
+from tutgen.spec.builders.analysis import build_analysis
 from tutgen.spec.builders.arm import build_arm
 from tutgen.spec.builders.ask import build_ask
 from tutgen.spec.builders.bodies import build_bodies, declared_bodies
@@ -65,6 +66,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
     check_explicit_placement(ctx, placed)
     figure = build_figure(ctx)
     simulation = build_simulate(ctx)
+    analysis = build_analysis(ctx)
     marking = build_marking(ctx)
     texts = build_texts(ctx)  # last: their maths may use every declared name
     ask = build_ask(ctx, bool(ctx.coords))
@@ -105,5 +107,6 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
         question_title=question_title,
         given=given,
         conventions=conventions,
+        analysis=analysis,
     )
     return with_texts(system, texts)
