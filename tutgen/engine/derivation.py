@@ -19,6 +19,7 @@ from tutgen.engine.steps import Step
 from tutgen.model.system import Method, System
 
 if TYPE_CHECKING:  # newton_euler.py imports this module
+    from tutgen.engine.constraints import ConstrainedDynamics
     from tutgen.engine.newton_euler import NewtonEuler
     from tutgen.engine.potential import PotentialSource
     from tutgen.engine.recursive import NestedDynamics
@@ -95,6 +96,9 @@ class Derivation:
     # serial arms: the same H, C q_dot and G as a straight-line program of named intermediates
     # (tutgen.engine.recursive.NestedDynamics), printed instead of entries too long to read
     program: NestedDynamics | None = None
+    # the spec's `constraints:`: the equations with Lagrange's multipliers and reduced to the independent
+    # coordinates (tutgen.engine.constraints); the fields above are those of the unconstrained coordinates
+    constraints: ConstrainedDynamics | None = None
 
     def has_step(self, kind: str) -> bool:
         """Whether the worked solution has a step of this kind (a :class:`~tutgen.engine.steps.StepKind`)."""

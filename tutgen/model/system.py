@@ -250,6 +250,22 @@ class ArmTable:
         return sp.ImmutableMatrix(rows)
 
 
+class ConstraintKind(StrEnum):
+    POSITION = "position"  # holonomic: f(q) = 0
+    VELOCITY = "velocity"  # nonholonomic: a(q) . q_dot = 0, linear and homogeneous in the rates
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """One constraint of the spec's ``constraints:``: ``expression`` = 0. A position constraint is a function
+    of the coordinates (and parameters); a velocity constraint is linear and homogeneous in the rates."""
+
+    name: str
+    kind: ConstraintKind
+    expression: sp.Expr
+    origin: Location
+
+
 @dataclass(frozen=True)
 class Given:
     """What a question states besides its statement and data (the spec's ``given:``)."""
@@ -287,6 +303,10 @@ class System:
     arm: ArmTable | None = None  # the spec's `arm:` table as written (its links are in bodies and joints)
     question_title: str | None = None  # the question sheet's title, when it differs from ``title``
     given: Given = field(default_factory=Given)
+    # the spec's `constraints:` in order, and the coordinates kept independent when the equations are
+    # reduced (`independent_coordinates:`; the others are the dependent ones, solved from the constraints)
+    constraints: tuple[Constraint, ...] = ()
+    independent_coordinates: tuple[str, ...] = ()
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:

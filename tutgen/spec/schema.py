@@ -690,6 +690,17 @@ class SpecDoc(SpecModel):
         default_factory=dict, description="Forces acting along coordinates directly: {x: F, theta: tau}."
     )
     energy: EnergySpec | None = None
+    constraints: dict[Name, Expr] = Field(
+        default_factory=dict,
+        description="Constraints, each an expression that is zero: of the coordinates (holonomic, "
+        "`rolling: x - R*phi`) or linear and homogeneous in the rates (nonholonomic, "
+        "`x_dot - R*phi_dot*cos(theta)`); docs/constraints.md.",
+    )
+    independent_coordinates: list[Name] | None = Field(
+        None,
+        description="With `constraints`: the coordinates the equations are reduced to (one fewer per "
+        "constraint; default: the first ones in order); the others are solved from the constraints.",
+    )
     ask: list[AskItem] | None = Field(None, description="What to derive (default: everything that applies).")
     methods: list[MethodItem] | None = Field(
         None,

@@ -18,6 +18,7 @@ from tutgen.spec.builders.arm import build_arm
 from tutgen.spec.builders.ask import build_ask
 from tutgen.spec.builders.bodies import build_bodies, declared_bodies
 from tutgen.spec.builders.context import Context
+from tutgen.spec.builders.constraints import build_constraints, build_independent_coordinates
 from tutgen.spec.builders.coordinates import build_coordinates, coordinates_with_dimensions
 from tutgen.spec.builders.elements import build_elements
 from tutgen.spec.builders.energy import build_energy
@@ -62,6 +63,8 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
     generalized_forces = build_generalized_forces(ctx)
     kinetic, potential = build_energy(ctx, body_names)
     check_explicit_placement(ctx, placed)
+    constraints = build_constraints(ctx)
+    independent = build_independent_coordinates(ctx, constraints)
     figure = build_figure(ctx)
     simulation = build_simulate(ctx)
     marking = build_marking(ctx)
@@ -102,5 +105,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
         marking=marking,
         question_title=question_title,
         given=given,
+        constraints=tuple(constraints),
+        independent_coordinates=independent,
     )
     return with_texts(system, texts)
