@@ -56,6 +56,9 @@ class StepKind(StrEnum):
     MATRIX_FORM = "matrix_form"  # C, G and Q of H q_ddot + C + G = Q
     MASS_MATRIX_DERIVATIVES = "mass_matrix_derivatives"  # the non-zero dH_ij/dq_k
     CHRISTOFFEL = "christoffel"  # each symbol from its definition, then C as a vector
+    CONSTRAINTS = "constraints"  # the constraints, their Jacobian A and the velocity analysis q_dot = T q_dot_i
+    LAGRANGE_MULTIPLIERS = "lagrange_multipliers"  # H q_ddot + C + G = Q + A^T lambda, lambda solved
+    REDUCED_EQUATIONS = "reduced_equations"  # H_r q_ddot_i + C_r + G_r = Q_r in the independent coordinates
 
 
 #: teaching order: every step comes after the steps it depends on (the serial arm's equations of
@@ -78,6 +81,12 @@ _WHY = {
     StepKind.MATRIX_FORM: "The equations of motion as H q_ddot + C + G = Q, with G = dU/dq.",
     StepKind.MASS_MATRIX_DERIVATIVES: "The Christoffel symbols are made of the derivatives of H's entries.",
     StepKind.CHRISTOFFEL: "Each Christoffel symbol from its definition; C is their contraction with the rates.",
+    StepKind.CONSTRAINTS: "The constraints tie the coordinates: their Jacobian A gives A q_dot = 0, and the "
+    "dependent rates follow from the independent ones, q_dot = T q_dot_i.",
+    StepKind.LAGRANGE_MULTIPLIERS: "Each constraint adds its force A^T lambda to the equations of all the "
+    "coordinates; with A q_ddot + b = 0 they determine q_ddot and lambda.",
+    StepKind.REDUCED_EQUATIONS: "Since T^T A^T = 0, projecting with T^T removes the multipliers: the equations "
+    "in the independent coordinates alone.",
 }
 
 _QUANTITY = {
@@ -93,6 +102,9 @@ _QUANTITY = {
     StepKind.MATRIX_FORM: "C, G, Q",
     StepKind.MASS_MATRIX_DERIVATIVES: "dH/dq",
     StepKind.CHRISTOFFEL: "Christoffel symbols and C",
+    StepKind.CONSTRAINTS: "constraint Jacobian and velocity analysis",
+    StepKind.LAGRANGE_MULTIPLIERS: "equations with Lagrange's multipliers",
+    StepKind.REDUCED_EQUATIONS: "equations in the independent coordinates",
 }
 
 
@@ -159,6 +171,9 @@ def _depends(system: System, methods: tuple[Method, ...], large: bool) -> dict[S
         K.MATRIX_FORM: tuple(form_needs),
         K.MASS_MATRIX_DERIVATIVES: (K.MASS_MATRIX,),
         K.CHRISTOFFEL: (K.MASS_MATRIX_DERIVATIVES,),
+        K.CONSTRAINTS: (),
+        K.LAGRANGE_MULTIPLIERS: (K.CONSTRAINTS, K.MATRIX_FORM),
+        K.REDUCED_EQUATIONS: (K.CONSTRAINTS, K.MATRIX_FORM),
     }
 
 
@@ -212,6 +227,9 @@ def plan_steps(
         # Newton-Euler presented: it is how the equations of motion are found
         if Ask.EQUATIONS_OF_MOTION in system.ask or Ask.LAGRANGE_EQUATIONS in system.ask:
             todo.append(StepKind.NEWTON_EULER)
+    if system.constraints and Ask.EQUATIONS_OF_MOTION in system.ask:
+        # a constrained system's equations of motion are those with the multipliers and the reduced ones
+        todo += [StepKind.LAGRANGE_MULTIPLIERS, StepKind.REDUCED_EQUATIONS]
     while todo:
         kind = todo.pop()
         if kind in wanted or not _applies(system, kind, large):
@@ -234,6 +252,8 @@ def _applies(system: System, kind: StepKind, large: bool) -> bool:
         return _newton_euler_applies(system) and not large
     if kind is StepKind.POTENTIAL_ENERGY:
         return _has_potential(system)
+    if kind in (StepKind.CONSTRAINTS, StepKind.LAGRANGE_MULTIPLIERS, StepKind.REDUCED_EQUATIONS):
+        return bool(system.constraints) and not large
     return True
 
 
@@ -359,11 +379,41 @@ def _equations(d: Derivation, kind: StepKind, large: bool) -> tuple[Equation, ..
             Equation(sp.Derivative(H_ENTRY[i + 1, j + 1], q[k]), v)
             for (i, j, k), v in mass_matrix_derivatives(d).items()
         )
+    if kind in (K.CONSTRAINTS, K.LAGRANGE_MULTIPLIERS, K.REDUCED_EQUATIONS):
+        return constraint_equations(d, kind)
     if kind is K.CHRISTOFFEL:
         if large:
             return _pairs((_name("C"), d.coriolis_vector))
         return (*christoffel_definitions(d), *_pairs((_name("C"), d.coriolis_vector)))
     return ()
+
+
+def constraint_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
+    """The equations of a constraint step: the constraints, A, B and T; lambda in the accelerations and
+    its value; H_r, C_r, G_r, Q_r and the reduced equations (tutgen.engine.constraints)."""
+    cd = d.constraints
+    if cd is None:
+        return ()
+    s = d.system
+    ck = cd.kinematics
+    if kind is StepKind.CONSTRAINTS:
+        out = [Equation(_name(f"f_{c.name}"), f) for c, f in zip(s.constraints, ck.functions, strict=True)]
+        return (
+            *out,
+            *_pairs((_name("A"), ck.jacobian), (_name("B"), ck.velocity_ratios), (_name("T"), ck.velocity_map)),
+        )
+    if kind is StepKind.LAGRANGE_MULTIPLIERS:
+        out = [Equation(_name("A^T lambda"), cd.constraint_forces)]
+        out += [Equation(lam, e) for lam, e in zip(cd.multipliers, cd.multipliers_in_accelerations, strict=True)]
+        out += [Equation(lam, e) for lam, e in zip(cd.multipliers, cd.multiplier_values, strict=True)]
+        return tuple(out)
+    return _pairs(
+        (_name("H_r"), cd.mass_matrix),
+        (_name("C_r"), cd.coriolis_vector),
+        (_name("G_r"), cd.gravity_vector),
+        (_name("Q_r"), cd.generalized_forces),
+        (_name("reduced"), cd.equations_of_motion),
+    )
 
 
 def christoffel_definitions(d: Derivation) -> tuple[Equation, ...]:
@@ -418,6 +468,7 @@ _CHECK_ABOUT = {
     "symmetric_mass_matrix": (StepKind.MASS_MATRIX,),
     "positive_semidefinite_mass_matrix": (StepKind.MASS_MATRIX,),
     "dimensional_consistency": (StepKind.EQUATIONS_OF_MOTION, StepKind.LAGRANGE_EQUATIONS),
+    "multipliers_equal_reduction": (StepKind.LAGRANGE_MULTIPLIERS, StepKind.REDUCED_EQUATIONS),
 }
 
 

@@ -21,6 +21,7 @@ from tutgen.model.system import System
 from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, prose, rich, unit_tex
 from tutgen.render.printer import TexPrinter, is_decimal_document
 from tutgen.render.sections.arm import arm_table
+from tutgen.render.sections.constraints import constraint_kinematics, multipliers, reduced_equations
 from tutgen.render.sections.energy import energies
 from tutgen.render.sections.inertia import mass_properties
 from tutgen.render.sections.kinematics import kinematics
@@ -51,6 +52,9 @@ BUILDERS: dict[StepKind, tuple[Builder, ...]] = {
     StepKind.MATRIX_FORM: (arm_table, matrix_form),
     StepKind.MASS_MATRIX_DERIVATIVES: (christoffel_symbols,),
     StepKind.CHRISTOFFEL: (christoffel_symbols,),
+    StepKind.CONSTRAINTS: (constraint_kinematics,),
+    StepKind.LAGRANGE_MULTIPLIERS: (multipliers,),
+    StepKind.REDUCED_EQUATIONS: (reduced_equations,),
 }
 
 

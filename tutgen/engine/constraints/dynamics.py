@@ -38,9 +38,9 @@ _TOLERANCE = mpmath.mpf("1e-15")
 _SIMPLIFY_OPS = 300  # sp.simplify only expressions this small (it is slow on long ones)
 
 
-def multiplier_symbol(name: str) -> sp.Symbol:
-    """The multiplier of constraint ``name``: ``lambda_<name>``."""
-    return sp.Symbol(f"lambda_{name}")
+def multiplier_symbol(k: int) -> sp.Symbol:
+    """The multiplier of the constraint ``k`` (1-based, in spec order): ``lambda_k``."""
+    return sp.Symbol(f"lambda_{k}")
 
 
 @dataclass(frozen=True)
@@ -114,14 +114,14 @@ def constrained_dynamics(
         [sp.Add(*[h_r[i, k] * qdd_i[k] for k in range(len(ind))], c_r[i], g_r[i], -q_r[i]) for i in range(len(ind))]
     )
 
-    lam = tuple(multiplier_symbol(c.name) for c in system.constraints)
+    lam = tuple(multiplier_symbol(k + 1) for k in range(m))
     a = ck.jacobian
     forces = sp.ImmutableMatrix((a.T * sp.Matrix(lam)).applyfunc(tidy))
     a_d = a.extract(list(range(m)), list(dep))
     # lambda from the dependent coordinates' equations, in the accelerations
     residual = h * sp.Matrix(qdd) + c_vec + g_vec - q_vec
     in_acc = a_d.T.LUsolve(sp.Matrix([residual[j] for j in dep]))
-    in_acc = tuple(_simplify(along(e)) for e in in_acc)
+    in_acc = tuple(tidy(sp.expand(along(e))) for e in in_acc)
     accelerations: tuple[sp.Expr, ...] = ()
     values: tuple[sp.Expr, ...] = ()
     if len(ind) <= 2:
@@ -222,6 +222,6 @@ def _agreement(
     return Check(
         "multipliers_equal_reduction",
         True,
-        f"the reduced equations and Lagrange's multipliers give the same q_ddot and lambda at {checked} "
-        "consistent states",
+        f"the reduced equations and Lagrange's multipliers give the same accelerations and multipliers at "
+        f"{checked} consistent states",
     )

@@ -17,8 +17,8 @@ from tutgen.spec import schema as S
 from tutgen.spec.builders.arm import build_arm
 from tutgen.spec.builders.ask import build_ask
 from tutgen.spec.builders.bodies import build_bodies, declared_bodies
-from tutgen.spec.builders.context import Context
 from tutgen.spec.builders.constraints import build_constraints, build_independent_coordinates
+from tutgen.spec.builders.context import Context
 from tutgen.spec.builders.coordinates import build_coordinates, coordinates_with_dimensions
 from tutgen.spec.builders.elements import build_elements
 from tutgen.spec.builders.energy import build_energy

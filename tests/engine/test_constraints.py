@@ -1,0 +1,146 @@
+"""Constraints (issue 21): each example against sympy.physics.mechanics built independently, and by hand.
+
+The references build the bodies with sympy's own frames and ``LagrangesMethod`` with ``hol_coneqs`` or
+``nonhol_coneqs`` and solve for q_ddot and the multipliers at random consistent states; tutgen's
+reduced equations and its lambda must give the same numbers. sympy's ``mass_matrix_full`` and
+``forcing_full`` read M q_ddot - A^T lambda = f (its ``lam_coeffs`` is -A, A the Jacobian of the constraints
+as written), which is tutgen's convention H q_ddot + C + G = Q + A^T lambda: the multipliers are compared
+as they are.
+"""
+
+from __future__ import annotations
+
+import random
+from typing import Any
+
+import pytest
+import sympy as sp
+from sympy.physics.mechanics import (
+    LagrangesMethod,
+    Point,
+    ReferenceFrame,
+    RigidBody,
+    dynamicsymbols,
+    inertia,
+)
+
+from tests.conftest import SPECS, solved
+
+DISC = str(SPECS / "examples" / "h-disc-rolling-down-incline.yaml")
+COIN = str(SPECS / "examples" / "i-vertical-rolling-coin.yaml")
+
+
+def _symbols(system: Any) -> dict[str, sp.Symbol]:
+    return {p.name: p.symbol for p in system.parameters}
+
+
+def _tutgen_numbers(d: Any, state: dict[sp.Symbol, float]) -> tuple[list[float], list[float]]:
+    """tutgen's q_ddot_i (reduced route) and lambda (its closed form) at ``state``."""
+    cd = d.constraints
+    acc = [float(sp.N(e.subs(state))) for e in cd.accelerations]
+    lam = [float(sp.N(e.subs(state))) for e in cd.multiplier_values]
+    return acc, lam
+
+
+def _solve_reference(lm: LagrangesMethod, values: dict[Any, float]) -> tuple[sp.Matrix, sp.Matrix]:
+    """sympy's q_ddot and lambda at a state: M_full [q_ddot; lambda] = f_full."""
+    lm.form_lagranges_equations()
+    m_full = lm.mass_matrix_full.subs(values)
+    f_full = lm.forcing_full.subs(values)
+    n = len(lm.q)
+    x = m_full.LUsolve(f_full)
+    # mass_matrix_full is over [q_dot; q_ddot; lambda]: the last rows
+    return x[n : 2 * n, 0], x[2 * n :, 0]
+
+
+def test_disc_rolling_by_hand() -> None:
+    """phi_ddot = 2 g sin(alpha) / (3 R); lambda = -m g sin(alpha) / 3: friction up the slope (x grows down it)."""
+    system, d, _ = solved(DISC)
+    s = _symbols(system)
+    m, r, g, alpha = s["m"], s["R"], s["g"], s["alpha"]
+    cd = d.constraints
+    assert sp.simplify(cd.accelerations[0] - 2 * g * sp.sin(alpha) / (3 * r)) == 0
+    assert sp.simplify(cd.multiplier_values[0] + m * g * sp.sin(alpha) / 3) == 0
+    assert sp.simplify(cd.mass_matrix[0, 0] - sp.Rational(3, 2) * m * r**2) == 0
+    # Newton-Euler on the free disc: m x_ddot = m g sin(alpha) + F (F the friction along x, at the contact)
+    # and (m R^2 / 2) phi_ddot = -R F; lambda is F
+    x_ddot = r * cd.accelerations[0]
+    friction = m * x_ddot - m * g * sp.sin(alpha)
+    assert sp.simplify(m * r**2 / 2 * cd.accelerations[0] + r * friction) == 0
+    assert sp.simplify(cd.multiplier_values[0] - friction) == 0
+
+
+def test_disc_rolling_against_lagranges_method() -> None:
+    system, d, _ = solved(DISC)
+    s = _symbols(system)
+    m, r, g, alpha = s["m"], s["R"], s["g"], s["alpha"]
+    x, phi = dynamicsymbols("x phi")
+    t = dynamicsymbols._t
+    n = ReferenceFrame("N")
+    b = n.orientnew("B", "Axis", (-phi, n.z))
+    o = Point("O")
+    o.set_vel(n, 0)
+    c = o.locatenew("C", x * (sp.cos(alpha) * n.x - sp.sin(alpha) * n.y))
+    c.set_vel(n, c.pos_from(o).dt(n))
+    disc = RigidBody("disc", c, b, m, (inertia(b, m * r**2 / 4, m * r**2 / 4, m * r**2 / 2), c))
+    disc.potential_energy = m * g * c.pos_from(o).dot(n.y)
+    lag = sp.physics.mechanics.Lagrangian(n, disc)
+    lm = LagrangesMethod(lag, [x, phi], hol_coneqs=[x - r * phi], frame=n)
+    rng = random.Random(21)
+    for _ in range(3):
+        params = {m: rng.uniform(0.5, 2), r: rng.uniform(0.5, 2), g: 9.81, alpha: rng.uniform(0.1, 1.2)}
+        ph, phd = rng.uniform(-2, 2), rng.uniform(-2, 2)
+        ref_values = {**params, phi: ph, x: params[r] * ph, phi.diff(t): phd, x.diff(t): params[r] * phd}
+        qdd, lam = _solve_reference(lm, ref_values)
+        coords = {c.name: c for c in system.coordinates}
+        state = {**params, coords["phi"].q: ph, coords["x"].q: params[r] * ph, coords["phi"].qd: phd}
+        acc, ours = _tutgen_numbers(d, state)
+        assert acc[0] == pytest.approx(float(qdd[1]), rel=1e-9, abs=1e-12)
+        assert ours[0] == pytest.approx(float(lam[0]), rel=1e-9, abs=1e-12)
+
+
+def test_coin_against_lagranges_method() -> None:
+    system, d, _ = solved(COIN)
+    s = _symbols(system)
+    m, r = s["m"], s["R"]
+    x, y, th, ph = dynamicsymbols("x y theta phi")
+    t = dynamicsymbols._t
+    n = ReferenceFrame("N")
+    a = n.orientnew("A", "Axis", (th, n.z))
+    b = a.orientnew("B", "Axis", (ph, a.y))
+    o = Point("O")
+    o.set_vel(n, 0)
+    c = o.locatenew("C", x * n.x + y * n.y + r * n.z)
+    c.set_vel(n, c.pos_from(o).dt(n))
+    coin = RigidBody("coin", c, b, m, (inertia(b, m * r**2 / 4, m * r**2 / 2, m * r**2 / 4), c))
+    lag = sp.physics.mechanics.Lagrangian(n, coin)
+    # the contact point at rest, from sympy's own kinematics: v_C + omega x (contact - C) = 0
+    contact = c.locatenew("P", -r * n.z)
+    v_contact = c.vel(n) + b.ang_vel_in(n).cross(contact.pos_from(c).express(n))
+    cons = [v_contact.dot(n.x), v_contact.dot(n.y)]
+    lm = LagrangesMethod(lag, [x, y, th, ph], nonhol_coneqs=cons, frame=n)
+    rng = random.Random(22)
+    coords = {cc.name: cc for cc in system.coordinates}
+    for _ in range(3):
+        params = {m: rng.uniform(0.5, 2), r: rng.uniform(0.5, 2)}
+        q = {name: rng.uniform(-2, 2) for name in ("x", "y", "theta", "phi")}
+        thd, phd = rng.uniform(-2, 2), rng.uniform(-2, 2)
+        xd = params[r] * phd * sp.cos(q["theta"])
+        yd = params[r] * phd * sp.sin(q["theta"])
+        ref_values = {**params, x: q["x"], y: q["y"], th: q["theta"], ph: q["phi"]}
+        ref_values |= {x.diff(t): xd, y.diff(t): yd, th.diff(t): thd, ph.diff(t): phd}
+        qdd, lam = _solve_reference(lm, ref_values)
+        state = {**params, **{coords[k].q: v for k, v in q.items()}, coords["theta"].qd: thd, coords["phi"].qd: phd}
+        acc, ours = _tutgen_numbers(d, state)
+        assert acc == pytest.approx([float(qdd[2]), float(qdd[3])], rel=1e-9, abs=1e-12)
+        # sympy's constraints (the contact point's velocity) are tutgen's as written: the same multipliers
+        assert ours == pytest.approx([float(v) for v in lam], rel=1e-9, abs=1e-12)
+
+
+@pytest.mark.parametrize("path", [DISC, COIN], ids=["disc", "coin"])
+def test_constraint_forces_do_no_work(path: str) -> None:
+    """q_dot . A^T lambda = 0 along the constrained motion (ideal constraints)."""
+    system, d, _ = solved(path)
+    cd = d.constraints
+    power = sum((cc.qd * f for cc, f in zip(system.coordinates, cd.constraint_forces, strict=True)), sp.Integer(0))
+    assert sp.simplify(power.xreplace(cd.kinematics.rates)) == 0
