@@ -144,3 +144,77 @@ def test_constraint_forces_do_no_work(path: str) -> None:
     cd = d.constraints
     power = sum((cc.qd * f for cc, f in zip(system.coordinates, cd.constraint_forces, strict=True)), sp.Integer(0))
     assert sp.simplify(power.xreplace(cd.kinematics.rates)) == 0
+
+
+_BASE = """
+tutgen: 1
+title: bad constraints
+parameters: [m, R]
+coordinates: [x, phi, y]
+bodies:
+  disc:
+    parts: {plate: {shape: disc, mass: m, radius: R}}
+    position: [x, y, 0]
+    orientation: [{axis: z, angle: phi}]
+"""
+
+
+@pytest.mark.parametrize(
+    ("constraints", "line", "message"),
+    [
+        pytest.param(
+            "constraints: {rolling: x - R*phi, twice: 2*x - 2*R*phi}\nindependent_coordinates: [y]",
+            11,
+            "constraint 'twice' is redundant or inconsistent with those before it: the constraint Jacobian A has "
+            "rank 1 < 2",
+            id="redundant",
+        ),
+        pytest.param(
+            "constraints: {loop: x**2 + R**2}\nindependent_coordinates: [phi, y]",
+            11,
+            "the position constraints (loop) hold at no configuration tried",
+            id="never-closes",
+        ),
+        pytest.param(
+            "constraints: {rolling: x - R*phi}\nindependent_coordinates: [x, phi]",
+            11,
+            "the independent coordinates [x, phi] cannot be kept: the constraints do not determine the rates of y",
+            id="singular-choice",
+        ),
+    ],
+)
+def test_bad_constraints_are_derivation_errors(constraints: str, line: int, message: str) -> None:
+    from tutgen.engine.pipeline import derive
+    from tutgen.errors import DerivationError
+    from tutgen.spec.validate import load_system_text
+
+    system = load_system_text(_BASE + constraints)
+    with pytest.raises(DerivationError) as info:
+        derive(system)
+    assert message in str(info.value)
+    assert info.value.location is not None and info.value.location.line == line
+
+
+def test_singular_choice_suggests_one_that_works() -> None:
+    from tutgen.engine.pipeline import derive
+    from tutgen.errors import DerivationError
+    from tutgen.spec.validate import load_system_text
+
+    system = load_system_text(_BASE + "constraints: {rolling: x - R*phi}\nindependent_coordinates: [x, phi]")
+    with pytest.raises(DerivationError) as info:
+        derive(system)
+    assert "e.g. independent_coordinates: [x, y]" in str(info.value)
+
+
+def test_bad_constraint_on_the_command_line(tmp_path: Any) -> None:
+    from typer.testing import CliRunner
+
+    from tutgen.cli.main import app
+    from tutgen.errors import EXIT_CANNOT_DERIVE
+
+    spec = tmp_path / "loop.yaml"
+    spec.write_text(_BASE + "constraints: {loop: x**2 + R**2}\nindependent_coordinates: [phi, y]\n")
+    result = CliRunner().invoke(app, ["solve", str(spec)])
+    assert result.exit_code == EXIT_CANNOT_DERIVE, result.output
+    assert "Traceback" not in result.stderr
+    assert f"{spec}:11:15: error: the position constraints (loop) hold at no configuration" in result.stderr

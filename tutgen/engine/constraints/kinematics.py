@@ -38,7 +38,7 @@ __all__ = ["ConstraintKinematics", "State", "consistent_states", "constraint_kin
 _SEED = 20261202
 #: how many random draws of the independent coordinates are tried before a position constraint is said
 #: to hold at no configuration, and the starting points of each solve
-_DRAWS = 12
+_DRAWS = 8
 _STARTS = (0.3, -0.7, 1.3, 2.5, -2.0)
 #: a singular value below this (relative to the largest) makes A rank-deficient
 _RANK_TOLERANCE = 1e-9
@@ -88,10 +88,13 @@ def consistent_states(
     rng = random.Random(_SEED)
     coords = system.coordinates
     position = [f for f, c in zip(functions, system.constraints, strict=True) if c.kind is ConstraintKind.POSITION]
-    unknowns = [coords[i].q for i in dependent]
-    # the dependent coordinates a position constraint can fix (the others are free: a velocity constraint
-    # does not fix a position)
-    fixed = [u for u in unknowns if any(u in f.free_symbols for f in position)][: len(position)]
+    # the coordinates solved from the position constraints: the dependent ones they use first, then any
+    # other they use (a singular choice of independent coordinates is found after, at a consistent state)
+    used = [c.q for c in coords if any(c.q in f.free_symbols for f in position)]
+    dep = {coords[i].q for i in dependent}
+    fixed = sorted(used, key=lambda s: s not in dep)[: len(position)]
+    others = sorted(set().union(*(f.free_symbols for f in position)) - set(fixed), key=sp.default_sort_key)
+    solver = _Solver(position, fixed, others) if position else None
     found = 0
     for _ in range(_DRAWS * count):
         if found == count:
@@ -100,27 +103,49 @@ def consistent_states(
         for c in coords:
             if c.q not in fixed:
                 values[c.q] = mpmath.mpf(rng.uniform(-1.5, 1.5))
-        if position:
-            eqs = [sp.lambdify(fixed, _numeric(f, values), modules="mpmath") for f in position]
-            root = None
-            for start in _STARTS:
-                try:
-                    with mpmath.workdps(30):
-                        if len(fixed) == 1:
-                            root = [mpmath.findroot(eqs[0], mpmath.mpf(start))]
-                        else:
-                            guess = [start + 0.1 * k for k in range(len(fixed))]
-                            root = list(mpmath.findroot(lambda *x, eqs=eqs: [e(*x) for e in eqs], guess))
-                    if all(abs(e(*root)) < 1e-20 for e in eqs):
-                        break
-                    root = None
-                except (ArithmeticError, ValueError, TypeError, ZeroDivisionError):
-                    root = None
+        if solver is not None:
+            root = solver.solve([values[s] for s in others])
             if root is None:
                 continue
-            values.update(dict(zip(fixed, (mpmath.mpf(mpmath.re(x)) for x in root), strict=True)))
+            values.update(dict(zip(fixed, root, strict=True)))
         found += 1
         yield State(values)
+
+
+class _Solver:
+    """A root of the position constraints in ``fixed`` for given values of ``others`` (as many equations as
+    unknowns, or more when some are redundant), by damped Gauss-Newton (Levenberg-Marquardt) from a few
+    starting points. Redundant equations do not stop it (the normal equations are damped); inconsistent
+    ones leave a residual, and no root is returned."""
+
+    def __init__(self, equations: Sequence[sp.Expr], fixed: Sequence[sp.Symbol], others: Sequence[sp.Symbol]) -> None:
+        args = [*fixed, *others]
+        self.k = len(fixed)
+        self.f = sp.lambdify(args, list(equations), modules="mpmath")
+        self.jac = sp.lambdify(args, sp.Matrix(equations).jacobian(list(fixed)).tolist(), modules="mpmath")
+
+    def solve(self, rest: list[mpmath.mpf]) -> list[mpmath.mpf] | None:
+        k = self.k
+        with mpmath.workdps(30):
+            for start in _STARTS:
+                x = mpmath.matrix([start + 0.1 * i for i in range(k)])
+                mu = mpmath.mpf("1e-3")
+                try:
+                    r = mpmath.matrix(self.f(*x, *rest))
+                    for _ in range(60):
+                        if mpmath.norm(r) < mpmath.mpf("1e-25"):
+                            return [mpmath.mpf(mpmath.re(v)) for v in x]
+                        j = mpmath.matrix(self.jac(*x, *rest))
+                        step = mpmath.lu_solve(j.T * j + mu * mpmath.eye(k), j.T * r)
+                        trial = x - step
+                        r_trial = mpmath.matrix(self.f(*trial, *rest))
+                        if mpmath.norm(r_trial) < mpmath.norm(r):
+                            x, r, mu = trial, r_trial, mu / 3
+                        else:
+                            mu *= 4
+                except (ArithmeticError, ValueError, TypeError, ZeroDivisionError):
+                    continue
+        return None
 
 
 def _rank(a: mpmath.matrix) -> int:
@@ -194,15 +219,16 @@ def constraint_kinematics(system: System) -> ConstraintKinematics:
         raise DerivationError(
             f"the position constraints ({', '.join(c.name for c in held)}) "
             f"hold at no configuration tried ({_DRAWS} random values of "
-            f"{', '.join(system.independent_coordinates)}): the loop does not close; check the lengths and the "
-            "constraint expressions",
+            f"{', '.join(system.independent_coordinates)}): they are inconsistent, or the loop does not close; "
+            "check the lengths and the constraint expressions",
             held[0].origin,
         )
     values = states[0].values
     a_num = _evaluate(a, values)
     if _rank(a_num) < m:
         # the first constraint that adds nothing to those before it
-        k = next(k for k in range(1, m + 1) if _rank(a_num[:k, :]) < k) - 1
+        k = next(k for k in range(1, m + 1) if _rank(_evaluate(a.extract(list(range(k)), list(range(n))), values)) < k)
+        k -= 1
         con = system.constraints[k]
         raise DerivationError(
             f"constraint '{con.name}' is redundant or inconsistent with those before it: the constraint "

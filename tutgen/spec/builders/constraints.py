@@ -46,7 +46,7 @@ def build_constraints(ctx: Context) -> list[Constraint]:
             ctx.error(
                 path,
                 f"velocity constraint '{name}' is '{value}', which is not linear and homogeneous in the rates; "
-                "expected a sum of terms (function of the coordinates) x NAME_dot, e.g. "
+                "expected a sum of NAME_dot terms, each times a function of the coordinates, e.g. "
                 "'x_dot - R*phi_dot*cos(theta)'",
             )
             continue
