@@ -227,7 +227,7 @@ def plan_steps(
         # Newton-Euler presented: it is how the equations of motion are found
         if Ask.EQUATIONS_OF_MOTION in system.ask or Ask.LAGRANGE_EQUATIONS in system.ask:
             todo.append(StepKind.NEWTON_EULER)
-    if system.constraints and Ask.EQUATIONS_OF_MOTION in system.ask:
+    if system.is_constrained and Ask.EQUATIONS_OF_MOTION in system.ask:
         # a constrained system's equations of motion are those with the multipliers and the reduced ones
         todo += [StepKind.LAGRANGE_MULTIPLIERS, StepKind.REDUCED_EQUATIONS]
     while todo:
@@ -253,7 +253,7 @@ def _applies(system: System, kind: StepKind, large: bool) -> bool:
     if kind is StepKind.POTENTIAL_ENERGY:
         return _has_potential(system)
     if kind in (StepKind.CONSTRAINTS, StepKind.LAGRANGE_MULTIPLIERS, StepKind.REDUCED_EQUATIONS):
-        return bool(system.constraints) and not large
+        return system.is_constrained and not large
     return True
 
 
@@ -394,10 +394,9 @@ def constraint_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
     cd = d.constraints
     if cd is None:
         return ()
-    s = d.system
     ck = cd.kinematics
     if kind is StepKind.CONSTRAINTS:
-        out = [Equation(_name(f"f_{c.name}"), f) for c, f in zip(s.constraints, ck.functions, strict=True)]
+        out = [Equation(_name(f"f_{c.name}"), f) for c, f in zip(ck.constraints, ck.functions, strict=True)]
         return (
             *out,
             *_pairs((_name("A"), ck.jacobian), (_name("B"), ck.velocity_ratios), (_name("T"), ck.velocity_map)),

@@ -267,6 +267,21 @@ class Constraint:
 
 
 @dataclass(frozen=True)
+class LoopJoint:
+    """A revolute joint that closes a loop (``closes_loop: true``): the point ``parent_at`` of the parent
+    (parent frame) and ``child_at`` of the child (child frame) coincide. Both bodies are placed by the
+    tree; the joint adds the loop-closure equations, one per world component that is not identically
+    zero (two for a planar loop)."""
+
+    name: str
+    parent: str
+    child: str
+    parent_at: Vector
+    child_at: Vector
+    origin: Location
+
+
+@dataclass(frozen=True)
 class Given:
     """What a question states besides its statement and data (the spec's ``given:``)."""
 
@@ -307,6 +322,7 @@ class System:
     # reduced (`independent_coordinates:`; the others are the dependent ones, solved from the constraints)
     constraints: tuple[Constraint, ...] = ()
     independent_coordinates: tuple[str, ...] = ()
+    loop_joints: tuple[LoopJoint, ...] = ()  # joints with `closes_loop: true`, in spec order
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:
@@ -315,6 +331,11 @@ class System:
 
     def body(self, name: str) -> Body:
         return next(b for b in self.bodies if b.name == name)
+
+    @property
+    def is_constrained(self) -> bool:
+        """Whether the coordinates are tied by constraints or loop-closing joints (tutgen.engine.constraints)."""
+        return bool(self.constraints or self.loop_joints)
 
     @property
     def has_dynamics(self) -> bool:

@@ -467,6 +467,15 @@ class JointSpec(SpecModel):
     motor: MotorSpec | None = Field(
         None, description="A motor with a gearbox at this joint: {rotor_inertia: Jm1, gear_ratio: n1}."
     )
+    closes_loop: bool = Field(
+        False,
+        description="A revolute joint that closes a loop (four-bar, slider-crank): it places nothing and has no "
+        "coordinate; `origin` on the parent and `child_origin` on the child (both already placed) must coincide, "
+        "which gives the loop-closure equations (docs/constraints.md).",
+    )
+    child_origin: Vector3 | None = Field(
+        None, description="A loop-closing joint: where it is, in the child's frame (default origin)."
+    )
 
 
 class DHLinkSpec(SpecModel):

@@ -31,7 +31,7 @@ import sympy as sp
 
 from tutgen.engine.tidy import tidy
 from tutgen.errors import DerivationError
-from tutgen.model.system import ConstraintKind, System
+from tutgen.model.system import Constraint, ConstraintKind, System
 
 __all__ = ["ConstraintKinematics", "State", "consistent_states", "constraint_kinematics"]
 
@@ -55,6 +55,7 @@ class State:
 class ConstraintKinematics:
     """The constraints' kinematics (see the module's conventions); indices are into the coordinates."""
 
+    constraints: tuple[Constraint, ...]  # the spec's, after the loop-closure equations of its loop joints
     functions: tuple[sp.Expr, ...]  # f_k(q) of a position constraint, a_k(q) . q_dot of a velocity one
     jacobian: sp.ImmutableMatrix  # A, m x n
     bias: sp.ImmutableMatrix  # b, m x 1: A q_ddot + b = 0
@@ -263,6 +264,7 @@ def constraint_kinematics(system: System) -> ConstraintKinematics:
         for r, j in enumerate(dependent)
     }
     return ConstraintKinematics(
+        constraints=system.constraints,
         functions=tuple(functions),
         jacobian=a,
         bias=bias,

@@ -30,7 +30,7 @@ def constraint_kinematics(c: SolutionContext) -> dict[str, Any] | None:
         "$A \\dot q = 0$.",
     )
     lines = []
-    for con, f in zip(s.constraints, ck.functions, strict=True):
+    for con, f in zip(ck.constraints, ck.functions, strict=True):
         kind = "position" if con.kind is ConstraintKind.POSITION else "velocity"
         lines.append(f"{tex(num(f))} = 0\\quad\\text{{({kind}: {con.name.replace('_', ' ')})}}")
     sec["blocks"].append(display(",\\quad ".join(lines), stack=True))
@@ -68,7 +68,7 @@ def constraint_kinematics(c: SolutionContext) -> dict[str, Any] | None:
         )
         for branch in ck.positions:
             sec["blocks"].append(display(",\\quad ".join(f"{coords[j].latex} = {tex(num(e))}" for j, e in branch)))
-    elif not ck.is_holonomic and not any(x.kind is ConstraintKind.POSITION for x in s.constraints):
+    elif not ck.is_holonomic and not any(x.kind is ConstraintKind.POSITION for x in ck.constraints):
         sec["blocks"].append(
             para(
                 text(
@@ -112,7 +112,7 @@ def multipliers(c: SolutionContext) -> dict[str, Any] | None:
         lhs = num(d.equations_of_motion[i] + d.generalized_forces[i])
         rhs = num(d.generalized_forces[i] + cd.constraint_forces[i])
         rows.append(f"{tex.ordered(lhs)} = {tex(rhs)}")
-    for k in range(len(s.constraints)):
+    for k in range(len(ck.constraints)):
         acc = sp.Add(*[ck.jacobian[k, j] * coords[j].qdd for j in range(len(coords))], ck.bias[k])
         rows.append(f"{tex(num(acc))} = 0")
     sec["blocks"].append(display(",\\quad ".join(rows), stack=True))
@@ -135,7 +135,7 @@ def multipliers(c: SolutionContext) -> dict[str, Any] | None:
                 )
             )
         )
-    for k, (con, lam) in enumerate(zip(s.constraints, cd.multipliers, strict=True)):
+    for k, (con, lam) in enumerate(zip(ck.constraints, cd.multipliers, strict=True)):
         parts = [math(tex(lam)), text(f" is the multiplier of constraint {con.name.replace('_', ' ')}; it acts")]
         first = True
         for j, x in enumerate(coords):

@@ -54,12 +54,17 @@ def build_constraints(ctx: Context) -> list[Constraint]:
     return out
 
 
-def build_independent_coordinates(ctx: Context, constraints: list[Constraint]) -> tuple[str, ...]:
+def build_independent_coordinates(ctx: Context, constraints: list[Constraint], loops: int = 0) -> tuple[str, ...]:
     """The coordinates kept when the equations are reduced: as listed, or the first n - m in order (m
-    constraints); each must be a declared coordinate, listed once, and there must be n - m of them."""
+    constraints); each must be a declared coordinate, listed once, and there must be n - m of them.
+
+    With ``loops`` loop-closing joints, m is known only from the loop-closure equations (two for a planar
+    loop, three otherwise): the engine checks the count, and the default is left to it (empty here)."""
     given = ctx.doc.independent_coordinates
     declared = list(ctx.coords)
     m = len(ctx.doc.constraints)
+    if given is None and loops:
+        return ()
     if given is None:
         if m and m >= len(declared):
             ctx.error(
@@ -71,7 +76,7 @@ def build_independent_coordinates(ctx: Context, constraints: list[Constraint]) -
             return ()
         return tuple(declared[: len(declared) - m]) if m else ()
     path: KeyPath = ("independent_coordinates",)
-    if not m:
+    if not m and not loops:
         ctx.error(path, "`independent_coordinates` is given but there are no `constraints`", key=True)
         return ()
     out: list[str] = []
@@ -90,7 +95,7 @@ def build_independent_coordinates(ctx: Context, constraints: list[Constraint]) -
             ok = False
         else:
             out.append(name)
-    if ok and len(out) != len(declared) - m:
+    if ok and not loops and len(out) != len(declared) - m:
         ctx.error(
             path,
             f"{len(declared)} coordinates with {m} constraint(s) leave {len(declared) - m} independent "
