@@ -218,3 +218,59 @@ def test_bad_constraint_on_the_command_line(tmp_path: Any) -> None:
     assert result.exit_code == EXIT_CANNOT_DERIVE, result.output
     assert "Traceback" not in result.stderr
     assert f"{spec}:11:15: error: the position constraints (loop) hold at no configuration" in result.stderr
+
+
+FOUR_BAR = str(SPECS / "examples" / "j-four-bar-crank-rocker.yaml")
+
+
+@pytest.mark.slow
+def test_four_bar_against_lagranges_method() -> None:
+    """The four-bar from sympy's own frames, with the loop-closure equations as hol_coneqs; at consistent
+    states (theta3, theta4 solved by nsolve) tutgen's reduced equation holds at sympy's accelerations and
+    its lambda (in the accelerations) equals sympy's pin-force multipliers."""
+    system, d, _ = solved(FOUR_BAR)
+    s = _symbols(system)
+    m2, m3, m4, mf, rf, a, b, c, dd, tau = (s[k] for k in ("m2", "m3", "m4", "mf", "rf", "a", "b", "c", "d", "tau"))
+    th = dynamicsymbols("theta2 theta3 theta4")
+    t = dynamicsymbols._t
+    n = ReferenceFrame("N")
+    frames = [n.orientnew(f"F{k}", "Axis", (q, n.z)) for k, q in enumerate(th)]
+    o2 = Point("O2")
+    o2.set_vel(n, 0)
+    pa = o2.locatenew("A", a * frames[0].x)
+    o4 = o2.locatenew("O4", dd * n.x)
+    o4.set_vel(n, 0)
+    bodies = []
+    for k, (start, length, mass, frame) in enumerate(
+        [(o2, a, m2, frames[0]), (pa, b, m3, frames[1]), (o4, c, m4, frames[2])]
+    ):
+        g_pt = start.locatenew(f"G{k}", length / 2 * frame.x)
+        g_pt.set_vel(n, g_pt.pos_from(o2).dt(n))
+        rod = (inertia(frame, 0, 0, mass * length**2 / 12), g_pt)
+        bodies.append(RigidBody(f"rod{k}", g_pt, frame, mass, rod))
+    # the flywheel: a disc centred at the fixed pin O2, turning with the crank
+    bodies.append(RigidBody("flywheel", o2, frames[0], mf, (inertia(frames[0], 0, 0, mf * rf**2 / 2), o2)))
+    lag = sp.physics.mechanics.Lagrangian(n, *bodies)
+    gap = pa.locatenew("B1", b * frames[1].x).pos_from(o2) - o4.locatenew("B2", c * frames[2].x).pos_from(o2)
+    cons = [gap.dot(n.x), gap.dot(n.y)]
+    lm = LagrangesMethod(lag, list(th), hol_coneqs=cons, forcelist=[(frames[0], tau * n.z)], frame=n)
+    coords = [cc for cc in system.coordinates]
+    rng = random.Random(23)
+    cd = d.constraints
+    for _ in range(2):
+        params = {m2: 1.2, m3: 0.8, m4: 1.1, mf: 2.0, rf: 0.3, a: 0.5, b: 2.0, c: 1.2, dd: 1.8, tau: 0.7}
+        q2 = rng.uniform(-3, 3)
+        eqs = [e.subs(params).subs(th[0], q2) for e in cons]
+        q3, q4 = sp.nsolve(eqs, [th[1], th[2]], [0.5, 1.5])
+        qd2 = rng.uniform(-1, 1)
+        ratios = cd.kinematics.velocity_ratios
+        plain = {**params, coords[0].q: q2, coords[1].q: float(q3), coords[2].q: float(q4)}
+        qd3, qd4 = (float(ratios[k, 0].subs(plain)) * qd2 for k in range(2))
+        ref = {**params, th[0]: q2, th[1]: float(q3), th[2]: float(q4)}
+        ref |= {th[0].diff(t): qd2, th[1].diff(t): qd3, th[2].diff(t): qd4}
+        qdd, lam = _solve_reference(lm, ref)
+        state = {**plain, coords[0].qd: qd2}
+        state |= {cc.qdd: float(v) for cc, v in zip(coords, qdd, strict=True)}
+        assert float(cd.equations_of_motion[0].subs(state)) == pytest.approx(0, abs=1e-9)
+        ours = [float(e.subs(state)) for e in cd.multipliers_in_accelerations]
+        assert ours == pytest.approx([float(v) for v in lam], rel=1e-8, abs=1e-10)

@@ -404,7 +404,7 @@ def constraint_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
     if kind is StepKind.LAGRANGE_MULTIPLIERS:
         out = [Equation(_name("A^T lambda"), cd.constraint_forces)]
         out += [Equation(lam, e) for lam, e in zip(cd.multipliers, cd.multipliers_in_accelerations, strict=True)]
-        out += [Equation(lam, e) for lam, e in zip(cd.multipliers, cd.multiplier_values, strict=True)]
+        out += [Equation(lam, e) for lam, e in zip(cd.multipliers, cd.multiplier_values, strict=False)]  # may be ()
         return tuple(out)
     return _pairs(
         (_name("H_r"), cd.mass_matrix),

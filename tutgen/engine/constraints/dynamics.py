@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import random
 from dataclasses import dataclass
+from typing import Any
 
 import mpmath
 import sympy as sp
@@ -35,7 +36,11 @@ __all__ = ["STATES", "ConstrainedDynamics", "constrained_dynamics", "multiplier_
 #: consistent states at which the two routes are compared
 STATES = 3
 _TOLERANCE = mpmath.mpf("1e-15")
-_SIMPLIFY_OPS = 300  # sp.simplify only expressions this small (it is slow on long ones)
+_SIMPLIFY_OPS = 60  # sp.simplify only expressions this small (it is slow on long ones)
+#: q_ddot_i and lambda are solved in closed form only when the reduced equations are this small (a
+#: four-bar's are pages long: its lambda stays in the accelerations, and the check is numeric)
+_CLOSED_FORM_OPS = 200
+_TIDY_OPS = 150
 
 
 def multiplier_symbol(k: int) -> sp.Symbol:
@@ -64,9 +69,12 @@ class ConstrainedDynamics:
 
 
 def _simplify(e: sp.Expr) -> sp.Expr:
+    """The project's tidy form, with a short fraction cancelled (sp.simplify takes minutes on a loop's)."""
+    if sp.count_ops(e) > _TIDY_OPS:  # a loop's long entries: tidying them takes minutes, and they stay long
+        return e
     e = tidy(e)
     if sp.count_ops(e) <= _SIMPLIFY_OPS:
-        simpler = sp.simplify(e)
+        simpler = tidy(sp.cancel(e))
         if sp.count_ops(simpler) < sp.count_ops(e):
             return simpler
     return e
@@ -120,11 +128,12 @@ def constrained_dynamics(
     a_d = a.extract(list(range(m)), list(dep))
     # lambda from the dependent coordinates' equations, in the accelerations
     residual = h * sp.Matrix(qdd) + c_vec + g_vec - q_vec
-    in_acc = a_d.T.LUsolve(sp.Matrix([residual[j] for j in dep]))
-    in_acc = tuple(tidy(sp.expand(along(e))) for e in in_acc)
+    # Cramer's rule with the kinematics' simplified det A_d (= det A_d^T), not an LU's nested fractions
+    in_acc = (a_d.T.adjugate() * sp.Matrix([residual[j] for j in dep])) / ck.determinant
+    in_acc = tuple(_simplify(along(e)) for e in in_acc)
     accelerations: tuple[sp.Expr, ...] = ()
     values: tuple[sp.Expr, ...] = ()
-    if len(ind) <= 2:
+    if len(ind) <= 2 and sp.count_ops(list(h_r) + list(c_r) + list(g_r) + list(q_r)) <= _CLOSED_FORM_OPS:
         sol = h_r.LUsolve(q_r - c_r - g_r)
         accelerations = tuple(_simplify(e) for e in sol)
         qdd_full = t_m * sp.Matrix(accelerations) + velocity_terms
@@ -169,6 +178,7 @@ def _agreement(
     ind = ck.independent
     a = ck.jacobian
     rng = random.Random(7)
+    compiled: dict[sp.Expr, tuple[list[sp.Symbol], Any]] = {}
     checked = 0
     worst = mpmath.mpf(0)
     with mpmath.workdps(30):
@@ -180,7 +190,11 @@ def _agreement(
                 values[v] = mpmath.mpf(sp.N(e.subs(values), 30))
 
             def num(e: sp.Expr, values: dict[sp.Symbol, mpmath.mpf] = values) -> mpmath.mpf:
-                return mpmath.mpf(sp.N(e.subs(values), 30))
+                if e not in compiled:  # each expression compiled once, evaluated at every state
+                    args = sorted(sp.sympify(e).free_symbols, key=sp.default_sort_key)
+                    compiled[e] = (args, sp.lambdify(args, e, modules="mpmath"))
+                args, f = compiled[e]
+                return mpmath.mpf(f(*[values[x] for x in args]))
 
             block = mpmath.zeros(n + m, n + m)
             rhs = mpmath.zeros(n + m, 1)

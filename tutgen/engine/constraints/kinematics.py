@@ -62,6 +62,7 @@ class ConstraintKinematics:
     independent: tuple[int, ...]
     dependent: tuple[int, ...]
     velocity_ratios: sp.ImmutableMatrix  # B, m x n_i: q_dot_d = B q_dot_i
+    determinant: sp.Expr  # det A_d: zero at the singular (dead-point) configurations of this choice
     velocity_map: sp.ImmutableMatrix  # T, n x n_i: q_dot = T q_dot_i
     # the position analysis: each dependent coordinate solved from the position constraints, by
     # branch (one branch when they are linear in q_d); empty when not solved in closed form
@@ -147,6 +148,15 @@ class _Solver:
                 except (ArithmeticError, ValueError, TypeError, ZeroDivisionError):
                     continue
         return None
+
+
+def _short(e: sp.Expr) -> sp.Expr:
+    """A short expression in its simplest form (trigonometric identities, factors)."""
+    e = tidy(sp.expand(e))
+    if sp.count_ops(e) > 80:
+        return e
+    simpler = sp.factor(sp.simplify(e))
+    return simpler if sp.count_ops(simpler) <= sp.count_ops(e) else e
 
 
 def _rank(a: mpmath.matrix) -> int:
@@ -252,7 +262,11 @@ def constraint_kinematics(system: System) -> ConstraintKinematics:
             system.constraints[0].origin,
         )
     a_i = a.extract(list(range(m)), list(independent))
-    b_mat = (-a_d.LUsolve(a_i)).applyfunc(lambda e: tidy(sp.together(e)))
+    # B = -A_d^-1 A_i by Cramer's rule, numerator and determinant each simplified (they are short: the
+    # four-bar's determinant is b c sin(theta3 - theta4), where its dead points are)
+    det = _short(a_d.det(method="berkowitz"))
+    adj = a_d.adjugate()
+    b_mat = (-(adj * a_i)).applyfunc(lambda e: _short(e) / det)
     t_rows: list[list[sp.Expr]] = []
     for j in range(n):
         if j in independent:
@@ -271,6 +285,7 @@ def constraint_kinematics(system: System) -> ConstraintKinematics:
         independent=independent,
         dependent=dependent,
         velocity_ratios=sp.ImmutableMatrix(b_mat),
+        determinant=det,
         velocity_map=sp.ImmutableMatrix(t_rows),
         positions=_solve_positions(functions, system, dependent),
         rates=rates,
