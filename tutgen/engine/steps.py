@@ -402,7 +402,7 @@ def constraint_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
             *_pairs((_name("A"), ck.jacobian), (_name("B"), ck.velocity_ratios), (_name("T"), ck.velocity_map)),
         )
     if kind is StepKind.LAGRANGE_MULTIPLIERS:
-        out = [Equation(_name("A^T lambda"), cd.constraint_forces)]
+        out = [Equation(_name("Q_lambda"), cd.constraint_forces)]  # A^T lambda, the constraint forces
         out += [Equation(lam, e) for lam, e in zip(cd.multipliers, cd.multipliers_in_accelerations, strict=True)]
         out += [Equation(lam, e) for lam, e in zip(cd.multipliers, cd.multiplier_values, strict=False)]  # may be ()
         return tuple(out)

@@ -62,6 +62,18 @@ def constraint_kinematics(c: SolutionContext) -> dict[str, Any] | None:
     )
     rates = [f"{tex(x.qd)} = {tex(num(ck.rates[x.qd]))}" for x in dep]
     sec["blocks"].append(display(",\\quad ".join(rates)))
+    if ck.determinant.free_symbols & {x.q for x in coords}:
+        # dead points: where det A_d vanishes the dependent rates are not determined by the independent ones
+        sec["blocks"].append(
+            para(
+                text("The velocity ratios have the denominator "),
+                math(f"\\det A_d = {tex(num(ck.determinant))}"),
+                text(
+                    ": where it vanishes (a dead point, or toggle position) the independent coordinates do not "
+                    "determine the motion of the others, and the equations below are singular."
+                ),
+            )
+        )
     if ck.positions:
         sec["blocks"].append(
             para(text("Position analysis: the position constraints solved for the dependent coordinates:"))
