@@ -44,7 +44,8 @@ def _tutgen_numbers(d: Any, state: dict[sp.Symbol, float]) -> tuple[list[float],
 
 def _solve_reference(lm: LagrangesMethod, values: dict[Any, float]) -> tuple[sp.Matrix, sp.Matrix]:
     """sympy's q_ddot and lambda at a state: M_full [q_ddot; lambda] = f_full."""
-    lm.form_lagranges_equations()
+    if lm.eom is None:  # formed once: a test evaluates it at several states
+        lm.form_lagranges_equations()
     m_full = lm.mass_matrix_full.subs(values)
     f_full = lm.forcing_full.subs(values)
     n = len(lm.q)
@@ -274,3 +275,15 @@ def test_four_bar_against_lagranges_method() -> None:
         assert float(cd.equations_of_motion[0].subs(state)) == pytest.approx(0, abs=1e-9)
         ours = [float(e.subs(state)) for e in cd.multipliers_in_accelerations]
         assert ours == pytest.approx([float(v) for v in lam], rel=1e-8, abs=1e-10)
+
+
+def test_code_refuses_a_constrained_spec() -> None:
+    """Generated code would be the unconstrained coordinates' dynamics: refused, not silently wrong."""
+    from typer.testing import CliRunner
+
+    from tutgen.cli.main import app
+    from tutgen.errors import EXIT_CANNOT_DERIVE
+
+    result = CliRunner().invoke(app, ["code", DISC, "-l", "python"])
+    assert result.exit_code == EXIT_CANNOT_DERIVE, result.output
+    assert "does not handle `constraints` or loop-closing joints yet" in result.stderr
