@@ -100,6 +100,7 @@ def test_disc_rolling_against_lagranges_method() -> None:
         assert ours[0] == pytest.approx(float(lam[0]), rel=1e-9, abs=1e-12)
 
 
+@pytest.mark.slow
 def test_coin_against_lagranges_method() -> None:
     system, d, _ = solved(COIN)
     s = _symbols(system)
@@ -287,3 +288,25 @@ def test_code_refuses_a_constrained_spec() -> None:
     result = CliRunner().invoke(app, ["code", DISC, "-l", "python"])
     assert result.exit_code == EXIT_CANNOT_DERIVE, result.output
     assert "does not handle `constraints` or loop-closing joints yet" in result.stderr
+
+
+SLIDER_CRANK = str(SPECS / "examples" / "k-slider-crank.yaml")
+
+
+@pytest.mark.slow
+def test_slider_crank_pin_force_is_newton_eulers() -> None:
+    """Newton on the piston alone: m3 s_ddot = F - P_x, with P_x the pin B's force on the rod along x (the
+    piston pushes the rod by P_x, the rod the piston by -P_x). The loop's first equation is
+    B_x = (rod's end) - (piston) = 0, whose multiplier acts on s as -lambda_1: lambda_1 = P_x = F - m3 s_ddot.
+    Also the velocity analysis by hand: s_dot = -r theta_dot sin(theta) - l beta_dot sin(beta) with
+    beta_dot = -r cos(theta) theta_dot / (l cos(beta)), from differentiating l sin(beta) + r sin(theta) = 0."""
+    system, d, _ = solved(SLIDER_CRANK)
+    s = _symbols(system)
+    co = {c.name: c for c in system.coordinates}
+    cd = d.constraints
+    assert sp.simplify(cd.multipliers_in_accelerations[0] - (s["F"] - s["m3"] * co["s"].qdd)) == 0
+    beta_dot = -s["r"] * sp.cos(co["theta"].q) * co["theta"].qd / (s["l"] * sp.cos(co["beta"].q))
+    s_dot = -s["r"] * co["theta"].qd * sp.sin(co["theta"].q) - s["l"] * beta_dot * sp.sin(co["beta"].q)
+    rates = cd.kinematics.rates
+    assert sp.simplify(rates[co["beta"].qd] - beta_dot) == 0
+    assert sp.simplify(rates[co["s"].qd] - s_dot) == 0
