@@ -93,13 +93,11 @@ def constraint_kinematics(c: SolutionContext) -> dict[str, Any] | None:
         sec["blocks"].append(
             para(
                 text("Acceleration analysis, "),
-                math("A\\ddot q + b = 0"),
-                text(" with "),
-                math("b = \\dot A \\dot q"),
-                text(":"),
+                math("A\\ddot q + \\dot A\\,\\dot q = 0"),
+                text(", with"),
             )
         )
-        sec["blocks"].append(display(f"b = {tex(num(ck.bias))}"))
+        sec["blocks"].append(display(f"\\dot A\\,\\dot q = {tex(num(ck.bias))}"))
     sec["blocks"].append(para(text("So "), math("\\dot q = T\\,\\dot q_i"), text(" with")))
     sec["blocks"].append(display(f"T = {tex(num(ck.velocity_map))}"))
     return sec
@@ -117,7 +115,7 @@ def multipliers(c: SolutionContext) -> dict[str, Any] | None:
     sec = section(
         "Equations with Lagrange's multipliers",
         "The constraint forces add $A^T\\lambda$ to the generalized forces: "
-        "$H\\ddot q + C + G = Q + A^T\\lambda$, together with $A\\ddot q + b = 0$.",
+        "$H\\ddot q + C + G = Q + A^T\\lambda$, together with $A\\ddot q + \\dot A\\,\\dot q = 0$.",
     )
     rows = []
     for i in range(len(coords)):
