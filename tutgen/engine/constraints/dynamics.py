@@ -41,6 +41,7 @@ _SIMPLIFY_OPS = 60  # sp.simplify only expressions this small (it is slow on lon
 #: four-bar's are pages long: its lambda stays in the accelerations, and the check is numeric)
 _CLOSED_FORM_OPS = 200
 _TIDY_OPS = 150
+_SHOWN_OPS = 120  # the closed forms of q_ddot_i and lambda are kept only when this short
 
 
 def multiplier_symbol(k: int) -> sp.Symbol:
@@ -139,6 +140,8 @@ def constrained_dynamics(
         qdd_full = t_m * sp.Matrix(accelerations) + velocity_terms
         acc_map = dict(zip(qdd, qdd_full, strict=True))
         values = tuple(_simplify(e.xreplace(acc_map)) for e in in_acc)
+        if sp.count_ops([*accelerations, *values]) > _SHOWN_OPS:  # a slider-crank's run to half a page
+            accelerations, values = (), ()
     check = _agreement(system, ck, h, c_vec, g_vec, q_vec, eom, in_acc, t_m, velocity_terms)
     return ConstrainedDynamics(
         kinematics=ck,
