@@ -35,7 +35,7 @@ def pytest_addoption(parser: pytest.Parser) -> None:
 #: fully symbolic spatial arms: seconds to derive but minutes to print (7 MB of Markdown for the symbolic
 #: PUMA), so every per-spec test of theirs runs only with ``-m slow``; tests/engine/test_recursive.py and
 #: test_serial.py check their dynamics in the default run without printing them
-HEAVY_SPECS = frozenset({"puma560", "stanford"})
+HEAVY_SPECS = frozenset({"puma560", "stanford", "n-four-bar-crank-rocker"})  # the four-bar: ~18 s to derive
 #: the specs whose PDF the default run compiles through ``latexmk`` (the product's route, sandbox and
 #: all): a composite body with its figure, a jointed chain with loads, a Lagrange-only arm, a DH arm, a
 #: spatial example. Every spec's LaTeX is compiled by pdflatex in tests/render/test_typeset.py anyway;

@@ -21,6 +21,7 @@ from tutgen.model.system import Method, System
 
 if TYPE_CHECKING:  # newton_euler.py imports this module
     from tutgen.engine.analysis import Analysis
+    from tutgen.engine.constraints import ConstrainedDynamics
     from tutgen.engine.newton_euler import NewtonEuler
     from tutgen.engine.potential import PotentialSource
     from tutgen.engine.recursive import NestedDynamics
@@ -102,6 +103,9 @@ class Derivation:
     simulation: SimulationSummary | None = None
     # `ask: [equilibria, linearization]`: the rest configurations and the linear models (engine/analysis)
     analysis: Analysis | None = None
+    # the spec's `constraints:`: the equations with Lagrange's multipliers and reduced to the independent
+    # coordinates (tutgen.engine.constraints); the fields above are those of the unconstrained coordinates
+    constraints: ConstrainedDynamics | None = None
 
     def has_step(self, kind: str) -> bool:
         """Whether the worked solution has a step of this kind (a :class:`~tutgen.engine.steps.StepKind`)."""

@@ -30,6 +30,7 @@ from collections.abc import Sequence
 import sympy as sp
 
 from tutgen.engine.checks import dimension_checks, matrix_form_checks, verify
+from tutgen.engine.constraints import constrained_dynamics, constraint_kinematics, with_loop_closures
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.forces import generalized_forces, rotors, spring_energies
 from tutgen.engine.inertia import BodyInertia, BodyPrincipal, body_inertia, body_principal
@@ -104,7 +105,7 @@ def derive(system: System, method: str | None = None) -> Derivation:
     if not system.coordinates:
         d = Derivation(system=system, inertia=inertia, principal=principal, methods=methods)
         return dataclasses.replace(d, steps=record_steps(d, plan_steps(system, methods)))
-    large = is_large_serial_chain(system)  # issue 8: the general route's expansions would run to pages
+    large = is_large_serial_chain(system) and not system.is_constrained  # issue 8: the expansions run to pages
     plan = plan_steps(system, methods, large)
     if large:
         d = _serial_route(system, methods, inertia, principal)
@@ -112,6 +113,8 @@ def derive(system: System, method: str | None = None) -> Derivation:
         d = _general_route(system, methods, inertia, principal, {kind for kind, _ in plan})
     if {kind for kind, _ in plan} & {StepKind.EQUILIBRIA, StepKind.LINEARIZATION, StepKind.MOMENTUM}:
         d = _analysis(d, {kind for kind, _ in plan})
+    if system.is_constrained and d.mass_matrix is not None:
+        d = _constrained(d)
     checkpoint("steps")
     kinds = [kind for kind, _ in plan]
     return dataclasses.replace(d, checks=reported_checks(d.checks, kinds), steps=record_steps(d, plan, large))
@@ -251,6 +254,18 @@ def _general_route(
     # the planar working (free bodies, eliminations: a quarter more time) only when it is printed
     ne = derive_newton_euler(system, derivation, kin, planar=Method.NEWTON_EULER in methods)
     return dataclasses.replace(derivation, newton_euler=ne, checks=(*derivation.checks, ne.agreement))
+
+
+def _constrained(d: Derivation) -> Derivation:
+    """The spec's constraints (issue 21): their kinematics, then the equations with Lagrange's multipliers
+    and reduced to the independent coordinates, checked against each other."""
+    checkpoint("constraints: kinematics")
+    system = with_loop_closures(d.system, d.kinematics)  # the loop joints' equations join the constraints
+    ck = constraint_kinematics(system)
+    checkpoint("constraints: multipliers and reduction")
+    assert d.coriolis_vector is not None and d.gravity_vector is not None and d.generalized_forces is not None
+    cd = constrained_dynamics(system, ck, d.mass_matrix, d.coriolis_vector, d.gravity_vector, d.generalized_forces)
+    return dataclasses.replace(d, constraints=cd, checks=(*d.checks, cd.check))
 
 
 def _serial_route(

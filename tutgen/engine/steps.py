@@ -60,6 +60,9 @@ class StepKind(StrEnum):
     EQUILIBRIA = "equilibria"  # the rest configurations G(q) = Q(q, 0), each classified (engine/analysis)
     LINEARIZATION = "linearization"  # M dq_ddot + D dq_dot + K dq = B du about an equilibrium, its modes
     MOMENTUM = "momentum"  # p, H_G, H_O per body and in total, dH_O/dt, conserved quantities
+    CONSTRAINTS = "constraints"  # the constraints, their Jacobian A and the velocity analysis q_dot = T q_dot_i
+    LAGRANGE_MULTIPLIERS = "lagrange_multipliers"  # H q_ddot + C + G = Q + A^T lambda, lambda solved
+    REDUCED_EQUATIONS = "reduced_equations"  # H_r q_ddot_i + C_r + G_r = Q_r in the independent coordinates
 
 
 #: teaching order: every step comes after the steps it depends on (the serial arm's equations of
@@ -89,6 +92,12 @@ _WHY = {
     "of motion: M dq_ddot + D dq_dot + K dq = B du.",
     StepKind.MOMENTUM: "Each body's momentum and angular momentum from its velocities and inertia; the rate of "
     "change of the total angular momentum about O is the moment of the external forces about O.",
+    StepKind.CONSTRAINTS: "The constraints tie the coordinates: their Jacobian A gives A q_dot = 0, and the "
+    "dependent rates follow from the independent ones, q_dot = T q_dot_i.",
+    StepKind.LAGRANGE_MULTIPLIERS: "Each constraint adds its force A^T lambda to the equations of all the "
+    "coordinates; with A q_ddot + b = 0 they determine q_ddot and lambda.",
+    StepKind.REDUCED_EQUATIONS: "Since T^T A^T = 0, projecting with T^T removes the multipliers: the equations "
+    "in the independent coordinates alone.",
 }
 
 _QUANTITY = {
@@ -108,6 +117,9 @@ _QUANTITY = {
     StepKind.EQUILIBRIA: "equilibria",
     StepKind.LINEARIZATION: "linear model",
     StepKind.MOMENTUM: "momentum",
+    StepKind.CONSTRAINTS: "constraint Jacobian and velocity analysis",
+    StepKind.LAGRANGE_MULTIPLIERS: "equations with Lagrange's multipliers",
+    StepKind.REDUCED_EQUATIONS: "equations in the independent coordinates",
 }
 
 
@@ -180,6 +192,9 @@ def _depends(system: System, methods: tuple[Method, ...], large: bool) -> dict[S
         # about the spec's equilibrium, or about each one found
         K.LINEARIZATION: (K.MATRIX_FORM,) if has_about else (K.EQUILIBRIA,),
         K.MOMENTUM: (K.LAGRANGIAN,),
+        K.CONSTRAINTS: (),
+        K.LAGRANGE_MULTIPLIERS: (K.CONSTRAINTS, K.MATRIX_FORM),
+        K.REDUCED_EQUATIONS: (K.CONSTRAINTS, K.MATRIX_FORM),
     }
 
 
@@ -237,6 +252,9 @@ def plan_steps(
         # Newton-Euler presented: it is how the equations of motion are found
         if Ask.EQUATIONS_OF_MOTION in system.ask or Ask.LAGRANGE_EQUATIONS in system.ask:
             todo.append(StepKind.NEWTON_EULER)
+    if system.is_constrained and Ask.EQUATIONS_OF_MOTION in system.ask:
+        # a constrained system's equations of motion are those with the multipliers and the reduced ones
+        todo += [StepKind.LAGRANGE_MULTIPLIERS, StepKind.REDUCED_EQUATIONS]
     while todo:
         kind = todo.pop()
         if kind in wanted or not _applies(system, kind, large):
@@ -261,6 +279,8 @@ def _applies(system: System, kind: StepKind, large: bool) -> bool:
         return _has_potential(system)
     if kind is StepKind.MOMENTUM:  # velocities of bodies: not the serial arm's route, not a given T
         return system.kinetic_energy is None and bool(system.bodies) and not large
+    if kind in (StepKind.CONSTRAINTS, StepKind.LAGRANGE_MULTIPLIERS, StepKind.REDUCED_EQUATIONS):
+        return system.is_constrained and not large
     return True
 
 
@@ -388,6 +408,8 @@ def _equations(d: Derivation, kind: StepKind, large: bool) -> tuple[Equation, ..
         )
     if kind in (K.EQUILIBRIA, K.LINEARIZATION, K.MOMENTUM):
         return analysis_equations(d, kind)
+    if kind in (K.CONSTRAINTS, K.LAGRANGE_MULTIPLIERS, K.REDUCED_EQUATIONS):
+        return constraint_equations(d, kind)
     if kind is K.CHRISTOFFEL:
         if large:
             return _pairs((_name("C"), d.coriolis_vector))
@@ -436,6 +458,31 @@ def analysis_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
             Equation(_name(f"A_{i}"), m.state_matrix),
         ]
     return tuple(out)
+def constraint_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
+    """The equations of a constraint step: the constraints, A, B and T; lambda in the accelerations and
+    its value; H_r, C_r, G_r, Q_r and the reduced equations (tutgen.engine.constraints)."""
+    cd = d.constraints
+    if cd is None:
+        return ()
+    ck = cd.kinematics
+    if kind is StepKind.CONSTRAINTS:
+        out = [Equation(_name(f"f_{c.name}"), f) for c, f in zip(ck.constraints, ck.functions, strict=True)]
+        return (
+            *out,
+            *_pairs((_name("A"), ck.jacobian), (_name("B"), ck.velocity_ratios), (_name("T"), ck.velocity_map)),
+        )
+    if kind is StepKind.LAGRANGE_MULTIPLIERS:
+        out = [Equation(_name("Q_lambda"), cd.constraint_forces)]  # A^T lambda, the constraint forces
+        out += [Equation(lam, e) for lam, e in zip(cd.multipliers, cd.multipliers_in_accelerations, strict=True)]
+        out += [Equation(lam, e) for lam, e in zip(cd.multipliers, cd.multiplier_values, strict=False)]  # may be ()
+        return tuple(out)
+    return _pairs(
+        (_name("H_r"), cd.mass_matrix),
+        (_name("C_r"), cd.coriolis_vector),
+        (_name("G_r"), cd.gravity_vector),
+        (_name("Q_r"), cd.generalized_forces),
+        (_name("reduced"), cd.equations_of_motion),
+    )
 
 
 def christoffel_definitions(d: Derivation) -> tuple[Equation, ...]:
@@ -491,6 +538,7 @@ _CHECK_ABOUT = {
     "positive_semidefinite_mass_matrix": (StepKind.MASS_MATRIX,),
     "dimensional_consistency": (StepKind.EQUATIONS_OF_MOTION, StepKind.LAGRANGE_EQUATIONS),
     "linearization_matches_finite_differences": (StepKind.EQUILIBRIA, StepKind.LINEARIZATION),
+    "multipliers_equal_reduction": (StepKind.LAGRANGE_MULTIPLIERS, StepKind.REDUCED_EQUATIONS),
 }
 
 

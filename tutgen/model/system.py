@@ -276,6 +276,35 @@ class Conventions:
     """The notational choices of a worked solution (the spec's ``conventions:``)."""
 
     christoffel: ChristoffelConvention = ChristoffelConvention.BOTH
+class ConstraintKind(StrEnum):
+    POSITION = "position"  # holonomic: f(q) = 0
+    VELOCITY = "velocity"  # nonholonomic: a(q) . q_dot = 0, linear and homogeneous in the rates
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """One constraint of the spec's ``constraints:``: ``expression`` = 0. A position constraint is a function
+    of the coordinates (and parameters); a velocity constraint is linear and homogeneous in the rates."""
+
+    name: str
+    kind: ConstraintKind
+    expression: sp.Expr
+    origin: Location
+
+
+@dataclass(frozen=True)
+class LoopJoint:
+    """A revolute joint that closes a loop (``closes_loop: true``): the point ``parent_at`` of the parent
+    (parent frame) and ``child_at`` of the child (child frame) coincide. Both bodies are placed by the
+    tree; the joint adds the loop-closure equations, one per world component that is not identically
+    zero (two for a planar loop)."""
+
+    name: str
+    parent: str
+    child: str
+    parent_at: Vector
+    child_at: Vector
+    origin: Location
 
 
 @dataclass(frozen=True)
@@ -317,6 +346,11 @@ class System:
     given: Given = field(default_factory=Given)
     conventions: Conventions = field(default_factory=Conventions)
     analysis: Analysis | None = None  # the spec's `analysis:` section (equilibrium, inputs)
+    # the spec's `constraints:` in order, and the coordinates kept independent when the equations are
+    # reduced (`independent_coordinates:`; the others are the dependent ones, solved from the constraints)
+    constraints: tuple[Constraint, ...] = ()
+    independent_coordinates: tuple[str, ...] = ()
+    loop_joints: tuple[LoopJoint, ...] = ()  # joints with `closes_loop: true`, in spec order
 
     @property
     def values(self) -> dict[sp.Symbol, sp.Expr]:
@@ -325,6 +359,11 @@ class System:
 
     def body(self, name: str) -> Body:
         return next(b for b in self.bodies if b.name == name)
+
+    @property
+    def is_constrained(self) -> bool:
+        """Whether the coordinates are tied by constraints or loop-closing joints (tutgen.engine.constraints)."""
+        return bool(self.constraints or self.loop_joints)
 
     @property
     def has_dynamics(self) -> bool:

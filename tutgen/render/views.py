@@ -22,6 +22,7 @@ from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, pros
 from tutgen.render.printer import TexPrinter, is_decimal_document
 from tutgen.render.sections.analysis import equilibria, linearization
 from tutgen.render.sections.arm import arm_table
+from tutgen.render.sections.constraints import constraint_kinematics, multipliers, reduced_equations
 from tutgen.render.sections.energy import energies
 from tutgen.render.sections.inertia import mass_properties
 from tutgen.render.sections.kinematics import kinematics
@@ -58,6 +59,9 @@ BUILDERS: dict[StepKind, tuple[Builder, ...]] = {
     StepKind.EQUILIBRIA: (equilibria,),
     StepKind.LINEARIZATION: (linearization,),
     StepKind.MOMENTUM: (momentum,),
+    StepKind.CONSTRAINTS: (constraint_kinematics,),
+    StepKind.LAGRANGE_MULTIPLIERS: (multipliers,),
+    StepKind.REDUCED_EQUATIONS: (reduced_equations,),
 }
 
 

@@ -278,6 +278,14 @@ def simulate_spec(
     with deadline(settings.timeout):
         charge("loading the specs", spec.name)
         system = load_system(spec)
+        if system.is_constrained:  # H, C, G are the unconstrained coordinates': they would ignore the constraints
+            from tutgen.errors import DerivationError
+
+            raise DerivationError(
+                "`tutgen simulate` does not handle `constraints` or loop-closing joints yet: the code would be that of "
+                "the unconstrained coordinates; use `tutgen solve` for the constrained equations",
+                system.origin,
+            )
         charge("derivation")
         derivation = derive(system, "lagrange")
         result = simulate_system(derivation, settings, spec.name)

@@ -23,6 +23,7 @@ NAMED_SECTIONS = {
     "dampers": "damper",
     "loads": "load",
     "generalized_forces": "generalized force on",
+    "constraints": "constraint",
 }
 #: Sections every expression or cross-reference depends on: when one of them has the wrong shape as a
 #: whole, checking the rest would only report consequences of that one mistake.

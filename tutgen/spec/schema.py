@@ -467,6 +467,15 @@ class JointSpec(SpecModel):
     motor: MotorSpec | None = Field(
         None, description="A motor with a gearbox at this joint: {rotor_inertia: Jm1, gear_ratio: n1}."
     )
+    closes_loop: bool = Field(
+        False,
+        description="A revolute joint that closes a loop (four-bar, slider-crank): it places nothing and has no "
+        "coordinate; `origin` on the parent and `child_origin` on the child (both already placed) must coincide, "
+        "which gives the loop-closure equations (docs/constraints.md).",
+    )
+    child_origin: Vector3 | None = Field(
+        None, description="A loop-closing joint: where it is, in the child's frame (default origin)."
+    )
 
 
 class DHLinkSpec(SpecModel):
@@ -723,6 +732,17 @@ class SpecDoc(SpecModel):
         default_factory=dict, description="Forces acting along coordinates directly: {x: F, theta: tau}."
     )
     energy: EnergySpec | None = None
+    constraints: dict[Name, Expr] = Field(
+        default_factory=dict,
+        description="Constraints, each an expression that is zero: of the coordinates (holonomic, "
+        "`rolling: x - R*phi`) or linear and homogeneous in the rates (nonholonomic, "
+        "`x_dot - R*phi_dot*cos(theta)`); docs/constraints.md.",
+    )
+    independent_coordinates: list[Name] | None = Field(
+        None,
+        description="With `constraints`: the coordinates the equations are reduced to (one fewer per "
+        "constraint; default: the first ones in order); the others are solved from the constraints.",
+    )
     ask: list[AskItem] | None = Field(None, description="What to derive (default: everything that applies).")
     methods: list[MethodItem] | None = Field(
         None,

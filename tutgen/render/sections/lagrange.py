@@ -47,8 +47,13 @@ def equations_of_motion(c: SolutionContext) -> dict[str, Any] | None:
         )
         sec["blocks"].append(boxed("H(q)\\,\\ddot q + C(q,\\dot q) + G(q) = Q"))
         return sec
-    sec = section("Equations of motion")
-    for eq, force in zip(d.equations_of_motion, d.generalized_forces, strict=True):
+    if d.constraints is not None:  # the constraint forces A^T lambda stand with the inputs (issue 21)
+        sec = section("Equations of motion", "With the constraint forces $A^T\\lambda$ (see the constraints below):")
+        reactions = list(d.constraints.constraint_forces)
+    else:
+        sec = section("Equations of motion")
+        reactions = [0] * len(s.coordinates)
+    for eq, force, reaction in zip(d.equations_of_motion, d.generalized_forces, reactions, strict=True):
         lhs = num(eq + force)  # the equation's side without the inputs, which stand on the right
-        sec["blocks"].append(boxed(f"{tex.ordered(lhs)} = {tex(num(force))}"))
+        sec["blocks"].append(boxed(f"{tex.ordered(lhs)} = {tex(num(force + reaction))}"))
     return sec

@@ -31,8 +31,17 @@ def build_joints(
     consts = ctx.symbols()
     known = sorted(bodies | {GROUND})
     for name, spec in ctx.doc.joints.items():
+        if spec.closes_loop:  # a loop-closing joint places nothing (builders/loops.py)
+            continue
         path: KeyPath = ("joints", name)
         ctx.check_name(path, name, "joint")
+        if spec.child_origin is not None:
+            ctx.error(
+                (*path, "child_origin"),
+                f"joint '{name}' does not close a loop, so it has no `child_origin`",
+                "add `closes_loop: true`, or remove it",
+                key=True,
+            )
         ok = True
         if name in arm_joints:
             ctx.error(

@@ -18,6 +18,7 @@ from tutgen.spec.builders.analysis import build_analysis
 from tutgen.spec.builders.arm import build_arm
 from tutgen.spec.builders.ask import build_ask
 from tutgen.spec.builders.bodies import build_bodies, declared_bodies
+from tutgen.spec.builders.constraints import build_constraints, build_independent_coordinates
 from tutgen.spec.builders.context import Context
 from tutgen.spec.builders.conventions import build_conventions
 from tutgen.spec.builders.coordinates import build_coordinates, coordinates_with_dimensions
@@ -28,6 +29,7 @@ from tutgen.spec.builders.given import build_given
 from tutgen.spec.builders.gravity import build_gravity
 from tutgen.spec.builders.joints import build_joints, check_explicit_placement
 from tutgen.spec.builders.loads import build_generalized_forces, build_loads
+from tutgen.spec.builders.loops import build_loop_joints
 from tutgen.spec.builders.marking import build_marking
 from tutgen.spec.builders.methods import build_methods
 from tutgen.spec.builders.parameters import build_parameters
@@ -64,6 +66,9 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
     generalized_forces = build_generalized_forces(ctx)
     kinetic, potential = build_energy(ctx, body_names)
     check_explicit_placement(ctx, placed)
+    loop_joints = build_loop_joints(ctx, body_names)
+    constraints = build_constraints(ctx)
+    independent = build_independent_coordinates(ctx, constraints, len(loop_joints))
     figure = build_figure(ctx)
     simulation = build_simulate(ctx)
     analysis = build_analysis(ctx)
@@ -108,5 +113,8 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
         given=given,
         conventions=conventions,
         analysis=analysis,
+        constraints=tuple(constraints),
+        independent_coordinates=independent,
+        loop_joints=tuple(loop_joints),
     )
     return with_texts(system, texts)
