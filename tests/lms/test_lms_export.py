@@ -1,6 +1,7 @@
 """The LMS exports as their importers read them: Moodle XML (the elements of moodle/moodle's
 question/format/xml/format.php and of qtype_stack's questions), the QTI 2.1 package (manifest, items,
-test); hostile text inert in both; the same bytes on every build; what QTI cannot hold named."""
+test); hostile text inert in both; the same bytes on every build; what QTI cannot hold named; and the
+round trip: the answers read back out of both exports are marked correct by the check (tests/lms/roundtrip.py)."""
 
 from __future__ import annotations
 
@@ -14,9 +15,12 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+import yaml
 
 from tests.lms.conftest import HOSTILE, TUTORIAL, build
+from tests.lms.roundtrip import mark, write_tree
 from tutgen.lms.qti import QTI_NS
+from tutgen.lms.readback import qti_answers
 
 #: The text formats format.php's trans_format knows.
 FORMATS = {"html", "moodle_auto_format", "plain_text", "markdown"}
@@ -195,3 +199,25 @@ def test_nominal_sheet_exports_one_question_per_problem(tmp_path: Path) -> None:
     assert "questions.md" in files and "questions-qti.zip" not in files
     idents = [q.findtext("idnumber") for q in questions(files["questions-moodle.xml"]) if q.get("type") != "category"]
     assert idents == ["p01-composite-inertia--nominal"]
+
+
+def test_roundtrip_answers_read_back_are_marked_correct(mini: dict[str, Any], tmp_path: Path) -> None:
+    write_tree(mini, tmp_path)
+    results = mark(tmp_path, mini)
+    assert [r for r in results if r[2] != "pass"] == []
+    assert len([r for r in results if r[0] == "moodle"]) == 8  # 4 problems x 2 variants
+    assert {r[1] for r in results if r[0] == "qti"} == {
+        f"{p}--{v}" for p in ("p01-composite-inertia", "p02-pivoted-rod") for v in ("v001", "v002")
+    }
+
+
+def test_roundtrip_a_wrong_number_is_marked_wrong(mini: dict[str, Any], tmp_path: Path) -> None:
+    from tutgen.check.run import load_reference, mark_file
+
+    write_tree(mini, tmp_path)
+    answers = qti_answers(mini["questions-qti.zip"])["p01-composite-inertia--v001"]
+    answers["inertia_tensor"][0][0] = str(float(answers["inertia_tensor"][0][0]) * 1.01)
+    path = tmp_path / "wrong.yaml"
+    path.write_text(yaml.safe_dump(answers), encoding="utf-8")
+    ref = load_reference(tmp_path / "variants/v001/specs/p01-composite-inertia.yaml")
+    assert mark_file(ref, path).status == "fail"
