@@ -2,10 +2,11 @@
 ``assessmentItem`` per problem and variant, and an ``assessmentTest`` that draws one variant of each
 problem (a section per problem, ``<selection select="1"/>``).
 
-QTI 2.1 has numeric responses but no algebraic ones, so an item holds a problem's numeric parts only,
+QTI 2.1 has numeric responses but no algebraic ones, so an item holds a problem's numeric results only,
 each entry a ``textEntryInteraction`` of base type float, scored with ``equal`` within the instructor's
-absolute tolerance; a symbolic part cannot be expressed and is left out, and named in the notes the
-export returns (never exported as a string to match). A problem with no numeric part has no item.
+absolute tolerance; a graded result with an expression in it cannot be expressed and is left out whole,
+named in the notes the export returns (never exported as a string to match). A problem with no
+numeric result has no item.
 The worked solution is the item's ``modalFeedback``, the figure an SVG file of the package.
 
 Deterministic: entries in sorted order, every entry's time fixed (1980-01-01), no randomness.
@@ -149,22 +150,29 @@ def _document(root: ET.Element) -> str:
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
 
 
-def omitted_parts(q: LmsQuestion) -> list[str]:
-    """The labels of the parts QTI 2.1 cannot hold (symbolic)."""
-    return [p.label for p in q.parts if not p.numeric]
+def omitted_items(q: LmsQuestion) -> list[str]:
+    """The graded items (result keys) QTI 2.1 cannot hold: those with an expression in any part. An
+    item is exported whole or not at all, so that a question never asks the zero Christoffel symbols
+    and leaves out the others."""
+    out: list[str] = []
+    for p in q.parts:
+        if not p.numeric and p.path[0] not in out:
+            out.append(p.path[0])
+    return out
 
 
 def qti_package(title: str, questions: Sequence[LmsQuestion]) -> tuple[bytes, list[str]]:
     """The zip of a sheet's questions (see the module's docstring), and the notes naming what was left
-    out: per problem, the symbolic parts (in every variant that has them) and the items not made."""
+    out: per problem, the graded results with an expression in them (in every variant or in some)."""
     files: dict[str, str | bytes] = {}
     resources: list[tuple[str, str, list[str]]] = []
     sections: dict[str, tuple[str, list[tuple[str, str]]]] = {}
     left: dict[str, dict[str, list[str]]] = {}
     for q in questions:
-        parts = [p for p in q.parts if p.numeric]
-        for label in omitted_parts(q):
-            left.setdefault(q.problem, {}).setdefault(label, []).append(q.variant)
+        omitted = omitted_items(q)
+        parts = [p for p in q.parts if p.path[0] not in omitted]
+        for key in omitted:
+            left.setdefault(q.problem, {}).setdefault(key, []).append(q.variant)
         if not parts:
             continue
         rid = ident(q.ident)
