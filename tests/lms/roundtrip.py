@@ -55,6 +55,7 @@ def mark(out: Path, files: dict[str, Any]) -> list[tuple[str, str, str]]:
         if ident in qti:
             marking = yaml.safe_load(key.read_text(encoding="utf-8"))
             marking["ask"] = [k for k in marking["ask"] if k not in missing.get(problem, set())]
+            assert marking["ask"], f"{ident}: a QTI item without a whole graded result"
             qkey = out / f"qti-key-{ident}.yaml"
             qkey.write_text(yaml.safe_dump(marking), encoding="utf-8")
             qref = dataclasses.replace(ref, key=marking_for(ref, read_key(qkey)))
