@@ -26,6 +26,8 @@ class SheetFormat(StrEnum):
     md = "md"
     tex = "tex"
     pdf = "pdf"
+    moodle = "moodle"  # Moodle XML of every variant (docs/lms.md)
+    qti = "qti"  # an IMS QTI 2.1 package (docs/lms.md)
 
 
 @handle_errors

@@ -28,7 +28,9 @@ from tutgen.model.marking import Marking
 from tutgen.sheet.model import Sheet
 from tutgen.sheet.variants import Variant
 
-FORMATS = ("md", "tex", "pdf")
+FORMATS = ("md", "tex", "pdf", "moodle", "qti")
+#: The LMS exports (tutgen/lms, docs/lms.md): one file for the whole sheet, every variant in it.
+LMS_FILES = {"moodle": "questions-moodle.xml", "qti": "questions-qti.zip"}
 
 
 @dataclass(frozen=True)
@@ -51,6 +53,7 @@ class Shared:
     seed: int
     method: str | None  # the --method override, or None: each spec's own `methods:`
     build: str = ""  # names one build: a worker's memo of another build's results is dropped
+    has_variants: bool = False  # an LMS export holds the variants, or (without) the nominal sheet
 
 
 @dataclass(frozen=True)
@@ -67,6 +70,7 @@ class JobResult:
     rederived: tuple[str, ...]  # the problems derived afresh for this variant
     derive_seconds: float
     render_seconds: float
+    lms: tuple[Any, ...] = ()  # this sheet's tutgen.lms LmsQuestions, for -f moodle / -f qti
 
 
 @dataclass
@@ -75,6 +79,7 @@ class SheetBuild:
     derive_seconds: float = 0.0  # the symbolic derivations (once per problem, plus any variant re-derived)
     render_seconds: float = 0.0  # substitution, views, templates, keys, concrete specs, PDFs
     rederived: list[tuple[str, str]] = field(default_factory=list)  # (variant, problem)
+    notes: list[str] = field(default_factory=list)  # what an LMS export left out, by name
 
 
 def variant_derivation(
@@ -158,6 +163,8 @@ def build_job(shared: Shared, job: Job) -> JobResult:
     files: list[tuple[str, str | bytes]] = []
     values_out: list[tuple[str, str, str]] = []
     rederived: list[str] = []
+    lms: list[Any] = []
+    wants_lms = any(f in LMS_FILES for f in shared.formats) and shared.has_variants == (job.variant is not None)
     prefix = ""
     header = dict(shared.header)
     if job.variant is not None:
@@ -190,18 +197,26 @@ def build_job(shared: Shared, job: Job) -> JobResult:
             key = answer_key(results, f"specs/{base.key}.yaml", job.variant.label)
             files.append((f"{prefix}key-{base.key}.yaml", key))
             files.append((f"{prefix}marking-{base.key}.yaml", marks))
+            if wants_lms:
+                lms.append(_lms(base, view, results, marks, system, job.variant.id, job.variant.label))
     else:
         derivations = [substituted(b.derivation, b.derivation.system) for b in shared.problems]
         views = [problem_view(b.number, d, solution=True) for b, d in zip(shared.problems, derivations, strict=True)]
         systems = [d.system for d in derivations]
         pairs = zip(shared.problems, derivations, strict=True)
         assets = [problem_assets(b.key, b.number, d, shared.formats) for b, d in pairs]
+        if wants_lms:
+            for b, d, v in zip(shared.problems, derivations, views, strict=True):
+                marks = marking_key(d, b.marking, f"specs/{b.key}.yaml")
+                lms.append(_lms(b, v, key_results(d), marks, d.system, "nominal", ""))
     views = [a.view(v, md=False) for a, v in zip(assets, views, strict=True)]  # the plots' names on the sheet
     figures = _figures(shared, systems) if "md" in shared.formats else {}
     context = {**header, "problems": views}
     for kind in ("questions", "solutions"):
         tex = None
         for fmt in shared.formats:
+            if fmt in LMS_FILES:
+                continue  # one file for the whole sheet: build_sheet writes it
             if fmt == "md":
                 md_views = [
                     _md_figure(a.view(v, md=True), figures.get(b.key))
@@ -223,7 +238,15 @@ def build_job(shared: Shared, job: Job) -> JobResult:
     files += [(f"{prefix}{name}", svg) for name, svg in figures.values()]
     files += [(f"{prefix}{name}", content) for a in assets for name, content in a.files]
     total = time.perf_counter() - start
-    return JobResult(tuple(files), tuple(values_out), tuple(rederived), t_derive, total - t_derive)
+    return JobResult(tuple(files), tuple(values_out), tuple(rederived), t_derive, total - t_derive, tuple(lms))
+
+
+def _lms(base: ProblemBase, view: Any, results: str, marks: str, system: Any, variant: str, label: str) -> Any:
+    from tutgen.lms.collect import lms_question
+
+    return lms_question(
+        key=base.key, view=view, results_yaml=results, marking_yaml=marks, system=system, variant=variant, label=label
+    )
 
 
 def figure_name(key: str) -> str:
@@ -307,6 +330,7 @@ def build_sheet(
         seed=seed,
         method=method,
         build=os.urandom(8).hex(),  # scopes the workers' memo only; never part of an output
+        has_variants=bool(variants),
     )
     jobs = [Job(None), *(Job(v) for v in variants)]
     results = (executor or SerialExecutor()).map(build_job, shared, jobs, on_done)
@@ -317,6 +341,13 @@ def build_sheet(
         out.rederived += [(job.variant.id if job.variant else "", k) for k in result.rederived]
     if variants:
         out.files.append(("variants/index.csv", _index(variants, results[1:])))
+    lms_formats = [f for f in shared.formats if f in LMS_FILES]
+    if lms_formats:
+        from tutgen.lms.export import lms_files
+
+        questions = [q for r in results for q in r.lms]
+        files, out.notes = lms_files(sheet.title, questions, lms_formats, LMS_FILES)
+        out.files += files
     return out
 
 
@@ -353,13 +384,15 @@ def file_names(
     figures = [figure_name(p.key) for p in sheet.problems if has_figure(p.system)] if "md" in fmts else []
     for p, d in zip(sheet.problems, derivations or (), strict=False):
         figures += asset_names(p.key, d, fmts)
-    names = [f"{kind}.{fmt}" for kind in ("questions", "solutions") for fmt in fmts] + figures
+    docs = [f for f in fmts if f not in LMS_FILES]
+    names = [f"{kind}.{fmt}" for kind in ("questions", "solutions") for fmt in docs] + figures
     for v in variants:
         prefix = f"variants/{v.id}/"
         for p in sheet.problems:
             names += [f"{prefix}specs/{p.key}.yaml", f"{prefix}key-{p.key}.yaml", f"{prefix}marking-{p.key}.yaml"]
-        names += [f"{prefix}{kind}.{fmt}" for kind in ("questions", "solutions") for fmt in fmts]
+        names += [f"{prefix}{kind}.{fmt}" for kind in ("questions", "solutions") for fmt in docs]
         names += [f"{prefix}{name}" for name in figures]
     if variants:
         names.append("variants/index.csv")
+    names += [LMS_FILES[f] for f in fmts if f in LMS_FILES]
     return names

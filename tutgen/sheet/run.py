@@ -380,8 +380,9 @@ def run_sheet(
         stage("writing", str(plan.out))
         write_tree(plan, build.files)
     variants = f", {len(plan.variants)} variants" if plan.variants else ""
+    notes = "".join(f"\nnote: {n}" for n in build.notes)  # what an LMS export left out, by name
     return (
         f"wrote {len(names)} files to {plan.out}{variants} "
         f"(derivation {derive_seconds + build.derive_seconds:.1f} s, rendering {build.render_seconds:.1f} s"
-        f" of worker time)"
+        f" of worker time){notes}"
     )
