@@ -26,7 +26,7 @@ def _tables() -> list[dict[str, Any]]:
 
 
 def test_p01_parts_table_holds_each_parts_formula_and_hand_derived_moments() -> None:
-    parts, shifts = _tables()
+    parts, _ = _tables()
     names = [row[0][0]["text"] for row in parts["rows"][::2]]
     assert names == ["block (box)", "cylinder (cylinder)", "point (point)"]
     head = ["".join(p.get("tex", p.get("text", "")) for p in cell) for cell in parts["header"]]

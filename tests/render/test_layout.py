@@ -107,6 +107,6 @@ def test_break_a_bracket_times_a_unit_vector_at_its_thin_space() -> None:
     width = tex_width(head) + 30.0
     assert tex_width(f"{head}\\,{tail}") > width
     rows = break_equation(f"{head}\\,{tail}", width)
-    assert [r.replace("&", "").strip() for r in rows][0] == head and rows[1].endswith(tail)
+    assert rows[0].replace("&", "").strip() == head and rows[1].endswith(tail)
     assert all(tex_width(r) <= width for r in rows)
     assert tex_width("x\\right)\\") == pytest.approx(tex_width("x\\right)"))  # asserted before
