@@ -142,6 +142,7 @@ _memo: dict[Any, Any] = {}
 
 def build_job(shared: Shared, job: Job) -> JobResult:
     """Every file of one sheet (nominal or a variant); runs in a worker."""
+    from tutgen.sheet.compact import shared_intros
     from tutgen.sheet.render import answer_key, key_results, marking_key, problem_view, render_sheet
     from tutgen.sheet.variants import quantity_text, sample
 
@@ -189,6 +190,7 @@ def build_job(shared: Shared, job: Job) -> JobResult:
         views = [problem_view(b.number, d, solution=True) for b, d in zip(shared.problems, derivations, strict=True)]
         systems = [d.system for d in derivations]
     figures = _figures(shared, systems) if "md" in shared.formats else {}
+    views = shared_intros(views)  # a section's conventions printed once per sheet (tutgen/sheet/compact.py)
     context = {**header, "problems": views}
     for kind in ("questions", "solutions"):
         tex = None

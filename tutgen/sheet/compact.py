@@ -6,9 +6,9 @@ solution's blocks (tutgen/render/blocks.py), never what they say: every equation
 still there, in the same order.
 
 1. A stacked display (``lines`` set one a line in ``rows``) whose lines fit on one line together goes
-   on one line (``a = 1,\\quad b = 2``); else, when its lines are all short and unbroken, it is set in
-   two columns of equations: a row ``a &= 1, & b &= 2,`` (``align*``/``aligned`` take pairs of
-   columns), read across then down, as the lines were in order.
+   on one line (``a = 1,\\quad b = 2``); else, when its lines are unbroken and the two columns they make
+   fit the line side by side, it is set in two columns of equations: a row ``a &= 1, & b &= 2,``
+   (``align*``/``aligned`` take pairs of columns), read across then down, as the lines were in order.
 2. Consecutive displays that are each one line (a list ``H_{11} = …`` and the matrix ``H = …``) share
    a line when they fit on it together, separated by ``\\qquad``; so do consecutive boxed answers (the
    equations of motion), each keeping its box.
@@ -17,6 +17,9 @@ still there, in the same order.
 4. A free-body diagram and the list of its forces that follows it become one ``beside`` block
    (``{"kind": "beside", "left": <freebody>, "right": <math>}``): the LaTeX sheet sets them side by side
    when TeX finds they fit (templates/latex/blocks/beside.tex.j2), Markdown one after the other.
+5. Across the problems of one sheet (:func:`shared_intros`): a section's introduction (its conventions,
+   the same words for every problem) is printed in full once, where it first appears; a later section
+   with the same title and the same introduction says where it stands (``As in Problem 2 (2.3).``).
 
 Widths are the line breaker's estimates (tutgen.render.layout), against its line width: the sheet's
 10 pt type is narrower than the 11 pt the estimate measures, so what fits the estimate fits the page.
@@ -29,7 +32,7 @@ from typing import Any
 
 from tutgen.render.layout import LINE_WIDTH_PT, tex_width
 
-__all__ = ["COLUMN_GAP", "compact_blocks", "compact_sections"]
+__all__ = ["COLUMN_GAP", "compact_blocks", "compact_sections", "shared_intros"]
 
 Block = dict[str, Any]
 
@@ -44,6 +47,27 @@ _PLAIN = re.compile(r"[A-Za-z0-9 ,;:.'()-]*")
 def compact_sections(sections: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """The sections with their blocks compacted (new dicts; the input is left as it was)."""
     return [{**sec, "blocks": compact_blocks(sec["blocks"])} for sec in sections]
+
+
+def shared_intros(problems: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """The problems of a sheet (tutgen/sheet/render.py's problem views, in sheet order) with each section
+    introduction that an earlier problem printed already replaced by a pointer to it (new dicts: a
+    worker's cached views are left as they were)."""
+    first: dict[tuple[str, str], str] = {}  # (title, introduction) -> where it was printed
+    out = []
+    for problem in problems:
+        solution = problem.get("solution") or {}
+        sections = []
+        for k, sec in enumerate(solution.get("sections") or []):
+            intro = sec.get("intro") or []
+            key = (str(sec.get("title")), repr(intro))
+            if intro and key in first:
+                sec = {**sec, "intro": [{"kind": "text", "text": f"As in {first[key]}."}]}
+            elif intro:
+                first[key] = f"Problem {problem['number']} ({problem['number']}.{k + 1})"
+            sections.append(sec)
+        out.append({**problem, "solution": {**solution, "sections": sections}} if solution else problem)
+    return out
 
 
 def compact_blocks(blocks: list[Block], width: float = LINE_WIDTH_PT) -> list[Block]:
@@ -108,7 +132,8 @@ def _columns(block: Block, width: float) -> Block:
     if tex_width(joined) <= width:
         return {**block, "tex": joined, "rows": []}
     widths = [tex_width(r) for r in rows]
-    if max(widths) * 2 + COLUMN_GAP > width:
+    # the two columns as wide as their widest equation each (the rows at even and at odd places)
+    if max(widths[0::2]) + max(widths[1::2]) + COLUMN_GAP > width:
         return block
     paired = [" & ".join(rows[k : k + 2]) for k in range(0, len(rows), 2)]
     return {**block, "rows": paired}

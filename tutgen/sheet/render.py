@@ -29,7 +29,7 @@ from tutgen.model.system import Ask
 from tutgen.render.blocks import prose, rich
 from tutgen.render.printer import TexPrinter
 from tutgen.render.views import coordinate_items, given_items
-from tutgen.sheet.compact import compact_sections
+from tutgen.sheet.compact import compact_sections, shared_intros
 
 #: What each item of a spec's ``ask`` asks for, as a question sheet words it (maths between ``$``, LaTeX).
 ASKED = {
@@ -101,7 +101,7 @@ def sheet_context(
     header: dict[str, str], derivations: Sequence[Derivation], solution: bool, views: list[dict[str, Any]] | None = None
 ) -> dict[str, Any]:
     problems = views if views is not None else [problem_view(i + 1, d, solution) for i, d in enumerate(derivations)]
-    return {**header, "problems": problems}
+    return {**header, "problems": shared_intros(problems)}
 
 
 _ENVS: dict[str, Any] = {}
