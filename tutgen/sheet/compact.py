@@ -20,9 +20,13 @@ still there, in the same order.
 5. Across the problems of one sheet (:func:`shared_intros`): a section's introduction (its conventions,
    the same words for every problem) is printed in full once, where it first appears; a later section
    with the same title and the same introduction says where it stands (``As in Problem 2 (2.3).``).
+6. A partial derivative is written on the line, ``\\partial L/\\partial \\dot q`` for
+   ``\\frac{\\partial L}{\\partial \\dot q}``, and ``\\tfrac{d}{dt}`` small, as a printed tutorial writes them
+   (:func:`slashed`): a display of Lagrange's terms or of Christoffel symbols is half as tall.
 
-Widths are the line breaker's estimates (tutgen.render.layout), against its line width: the sheet's
-10 pt type is narrower than the 11 pt the estimate measures, so what fits the estimate fits the page.
+Widths are the line breaker's estimates (tutgen.render.layout), which measure 11 pt type: the sheet's
+10 pt type on its 494 pt line (17.4 cm) has room for about 540 pt of such estimates, so the sheet's
+displays are joined up to :data:`SHEET_WIDTH_PT`, a margin left for the estimate's error.
 """
 
 from __future__ import annotations
@@ -30,12 +34,14 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from tutgen.render.layout import LINE_WIDTH_PT, tex_width
+from tutgen.render.layout import tex_width
 
-__all__ = ["COLUMN_GAP", "compact_blocks", "compact_sections", "shared_intros"]
+__all__ = ["COLUMN_GAP", "SHEET_WIDTH_PT", "compact_blocks", "compact_sections", "shared_intros", "slashed"]
 
 Block = dict[str, Any]
 
+#: the widest a joined display of the sheet is made, in the line breaker's 11 pt estimate
+SHEET_WIDTH_PT = 490.0
 #: the space between the two columns of equations (an ``align*`` gap is about 2 em at 11 pt)
 COLUMN_GAP = 24.0
 #: the widest a lead-in paragraph may be to run into the display after it
@@ -44,9 +50,9 @@ LEAD_IN_WIDTH = 120.0
 _PLAIN = re.compile(r"[A-Za-z0-9 ,;:.'()-]*")
 
 
-def compact_sections(sections: list[dict[str, Any]]) -> list[dict[str, Any]]:
+def compact_sections(sections: list[dict[str, Any]], width: float = SHEET_WIDTH_PT) -> list[dict[str, Any]]:
     """The sections with their blocks compacted (new dicts; the input is left as it was)."""
-    return [{**sec, "blocks": compact_blocks(sec["blocks"])} for sec in sections]
+    return [{**sec, "blocks": compact_blocks(sec["blocks"], width)} for sec in sections]
 
 
 def shared_intros(problems: list[dict[str, Any]]) -> list[dict[str, Any]]:
@@ -70,10 +76,11 @@ def shared_intros(problems: list[dict[str, Any]]) -> list[dict[str, Any]]:
     return out
 
 
-def compact_blocks(blocks: list[Block], width: float = LINE_WIDTH_PT) -> list[Block]:
+def compact_blocks(blocks: list[Block], width: float = SHEET_WIDTH_PT) -> list[Block]:
     """The blocks with short stacked displays in two columns and short consecutive displays on one line."""
     out: list[Block] = []
     for block in blocks:
+        block = _slashed_block(block)
         block = _columns(block, width) if block.get("kind") == "math" else block
         prev = out[-1] if out else None
         if prev is not None and _one_line(prev) and _one_line(block):
@@ -91,6 +98,63 @@ def compact_blocks(blocks: list[Block], width: float = LINE_WIDTH_PT) -> list[Bl
             continue
         out.append(block)
     return out
+
+
+_PARTIAL = "\\frac{\\partial"
+
+
+def _braced(tex: str, start: int) -> int:
+    """The index just after the braced group that opens at ``tex[start]`` (``{``), or -1."""
+    depth = 0
+    i = start
+    while i < len(tex):
+        ch = tex[i]
+        if ch == "\\":
+            i += 2
+            continue
+        depth += {"{": 1, "}": -1}.get(ch, 0)
+        i += 1
+        if depth == 0:
+            return i
+    return -1
+
+
+def slashed(tex: str) -> str:
+    """``\\frac{\\partial A}{\\partial B}`` as ``\\partial A/\\partial B`` (braced when A or B is more than one
+    factor, so the slash reads right), and ``\\frac{d}{dt}`` as ``\\tfrac{d}{dt}``."""
+    tex = tex.replace("\\frac{d}{dt}", "\\tfrac{d}{dt}")
+    out, i = [], 0
+    while True:
+        k = tex.find(_PARTIAL, i)
+        if k < 0:
+            break
+        num_end = _braced(tex, k + 5)
+        den_end = _braced(tex, num_end) if num_end > 0 and tex.startswith("{", num_end) else -1
+        if den_end < 0:
+            out.append(tex[i : k + 1])
+            i = k + 1
+            continue
+        num, den = tex[k + 6 : num_end - 1].strip(), tex[num_end + 1 : den_end - 1].strip()
+        if not den.startswith("\\partial") or any(c in num + den for c in "+-"):
+            out.append(tex[i:den_end])  # a quotient that is not one partial derivative: as it is
+        else:
+            out.append(f"{tex[i:k]}{{{num}/{den}}}")
+        i = den_end
+    out.append(tex[i:])
+    return "".join(out)
+
+
+def _slashed_block(block: Block) -> Block:
+    if block.get("kind") not in ("math", "boxed") or _PARTIAL not in str(block.get("tex")) + "".join(
+        block.get("rows") or []
+    ):
+        return block
+    return {
+        **block,
+        "tex": slashed(block["tex"]),
+        "lines": [slashed(x) for x in block.get("lines") or []],
+        "rows": [slashed(x) for x in block.get("rows") or []],
+    }
 
 
 def _one_line(block: Block) -> bool:
