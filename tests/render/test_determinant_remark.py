@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import re
 
+import pytest
 import sympy as sp
 
 from tests.conftest import SPECS, solved
@@ -40,3 +41,18 @@ def test_tutorial_p10_and_p09_say_it_once_and_truly() -> None:
     assert "never zero" in p10 and "singular where it vanishes" not in p10
     p09 = _words(str(SPECS / "tutorial-1" / "p09-pr-manipulator.yaml"))
     assert p09.count("cannot be solved for every acceleration") == 1
+
+
+def test_det_sympy_cannot_decide_is_said_without_a_claim(monkeypatch: pytest.MonkeyPatch) -> None:
+    """sympy's solvers raise many kinds of error (mpmath's NoConvergence in a sheet's variant): the
+    sentence then claims nothing it has not derived."""
+    import sympy.calculus.util as util
+
+    def fails(*args: object, **kwargs: object) -> None:
+        raise RuntimeError("convergence to root failed")
+
+    monkeypatch.setattr(util, "minimum", fails)
+    text = singular_sentence(2 - sp.cos(theta) ** 2, [theta], sp.latex)
+    assert "never zero" in text and "\\ge" not in text
+    monkeypatch.setattr(sp, "solveset", fails)
+    assert "where it vanishes, if any" in singular_sentence(2 - sp.cos(theta) ** 2, [theta], sp.latex)

@@ -200,7 +200,7 @@ def singular_sentence(det: sp.Expr, coordinates: list[sp.Symbol], tex: Any) -> s
         q = qs[0]
         try:
             zeros = sp.solveset(det.subs(positive), q, sp.S.Reals)
-        except (NotImplementedError, ValueError, TypeError):  # sympy cannot decide: said as unknown below
+        except Exception:  # sympy cannot decide (it raises many kinds, mpmath's NoConvergence too): unknown
             zeros = None
         if zeros is sp.S.EmptySet:
             back = {v: k for k, v in positive.items()}
@@ -211,7 +211,7 @@ def singular_sentence(det: sp.Expr, coordinates: list[sp.Symbol], tex: Any) -> s
                 least = minimum(det.subs(positive), q, sp.S.Reals)
                 if least.is_positive:
                     why = f", since $\\det H \\ge {tex(least.subs(back))} > 0$ for every ${tex(q)}$"
-            except (NotImplementedError, ValueError, TypeError):  # no closed form: the zeros alone decide
+            except Exception:  # no closed form, or no convergence (mpmath): the zeros alone decide
                 why = ""
             return (
                 f"It is never zero{assumed}{why}: it has no real zero in ${tex(q)}$, so $H$ is invertible in "
