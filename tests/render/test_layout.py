@@ -92,3 +92,21 @@ def test_a_list_too_wide_for_one_line_is_stacked_with_aligned_relations() -> Non
     firsts = [r for r in rows if not r.startswith("&")]
     assert [r.split("&")[0].strip() for r in firsts] == ["a", "b"]
     assert rows[-1].endswith("}") and any(r.endswith(",") for r in rows)
+
+
+def test_break_a_bracket_times_a_unit_vector_at_its_thin_space() -> None:
+    """``\\left(…\\right)\\,\\mathbf i`` (a Newton–Euler force's component): a sum inside breaks inside its
+    bracket, the unit vector kept after its closing; a product inside, that cannot break, breaks at the
+    thin space; a text cut right after ``\\,`` (a lone backslash at its end) is measured, never an error."""
+    rows = break_equation(f"\\mathbf F = \\left({LONG_SUM}\\right)\\,\\mathbf i", 300.0)
+    assert len(rows) > 1 and rows[-1].endswith("\\bigr)\\,\\mathbf i")
+    assert _content(rows) == _content([f"\\mathbf F = \\left({LONG_SUM}\\right)\\,\\mathbf i"])
+    product = " ".join(f"a_{{{i}}} \\cos\\theta_{{{i}}}" for i in range(1, 11))
+    head = f"\\left({product}\\right)"
+    tail = "\\frac{m_1 + m_2 + m_3 + m_4}{m_5 + m_6 + m_7 + m_8}\\,\\mathbf i"
+    width = tex_width(head) + 30.0
+    assert tex_width(f"{head}\\,{tail}") > width
+    rows = break_equation(f"{head}\\,{tail}", width)
+    assert rows[0].replace("&", "").strip() == head and rows[1].endswith(tail)
+    assert all(tex_width(r) <= width for r in rows)
+    assert tex_width("x\\right)\\") == pytest.approx(tex_width("x\\right)"))  # asserted before

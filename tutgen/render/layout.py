@@ -110,10 +110,11 @@ def _group(cur: _Cursor) -> str:
                 return cur.text[start + 1 : cur.pos - 1]
         return cur.text[start + 1 :]
     if ch == "\\":
-        m = re.compile(r"\\([A-Za-z]+|.)").match(cur.text, cur.pos)
-        assert m is not None
-        cur.pos = m.end()
-        return m.group(0)
+        # a command, or a control symbol (\, \; \{); a backslash that ends the text (a piece cut just
+        # after the thin space of ``\right)\,``) is taken as it is, never an error
+        m = re.compile(r"\\([A-Za-z]+|.)", re.S).match(cur.text, cur.pos)
+        cur.pos = m.end() if m is not None else len(cur.text)
+        return m.group(0) if m is not None else "\\"
     cur.pos += 1
     return ch
 
@@ -479,12 +480,10 @@ def _break_term(term: str, first: float, rest: float) -> list[str]:
         )
         return _break_term(f"{sign}{rewritten}", first, rest)
     found = _bracket(term)
-    if found is None:
-        return [term]
+    inner_terms = terms(found[1]) if found is not None else []
+    if found is None or len(inner_terms) < 2:
+        return _break_thin(term, first)
     before, inner, after = found
-    inner_terms = terms(inner)
-    if len(inner_terms) < 2:
-        return [term]
     before, opening = before[:-1], before[-1]  # ( or [, and after starts with its partner
     closing, after = after[0], after[1:]
     big = "Big" if "\\frac" in inner else "big"
@@ -493,6 +492,42 @@ def _break_term(term: str, first: float, rest: float) -> list[str]:
     pieces[-1] = pieces[-1] + f"\\{big}r{closing}" + after
     lines = _fill(pieces, first, rest - _EM)
     return [lines[0], *("\\quad " + ln for ln in lines[1:])]
+
+
+def _thin_spaces(term: str) -> list[int]:
+    """Positions of the top-level thin spaces ``\\,`` of a term (outside braces and brackets): the places
+    a product such as ``\\left(…\\right)\\,\\mathbf i`` may break when nothing else can."""
+    out: list[int] = []
+    depth, i = 0, 0
+    while i < len(term):
+        if term.startswith("\\left", i) and not term[i + 5 : i + 6].isalpha():
+            depth, i = depth + 1, i + 6
+            continue
+        if term.startswith("\\right", i) and not term[i + 6 : i + 7].isalpha():
+            depth, i = depth - 1, i + 7
+            continue
+        if term.startswith("\\,", i):
+            if depth == 0:
+                out.append(i)
+            i += 2
+            continue
+        if term[i] == "\\":
+            i += 2
+            continue
+        depth += {"{": 1, "}": -1, "(": 1, ")": -1, "[": 1, "]": -1}.get(term[i], 0)
+        i += 1
+    return [k for k in out if term[:k].strip() and term[k + 2 :].strip()]
+
+
+def _break_thin(term: str, first: float) -> list[str]:
+    """A term with no bracket to break, broken at its last top-level thin space that leaves a first line
+    of at most ``first`` points (the factor after it on the next line, indented); whole if it has none
+    (a term too wide for any line is reported by the PDF test)."""
+    for k in reversed(_thin_spaces(term)):
+        head, tail = term[:k].rstrip(), term[k + 2 :].strip()
+        if tex_width(head) <= first:
+            return [head, f"\\quad {tail}"]
+    return [term]
 
 
 def break_equation(tex: str, width: float = LINE_WIDTH_PT, column: float | None = None) -> list[str]:

@@ -149,6 +149,7 @@ _memo: dict[Any, Any] = {}
 def build_job(shared: Shared, job: Job) -> JobResult:
     """Every file of one sheet (nominal or a variant); runs in a worker."""
     from tutgen.sheet.assets import problem_assets
+    from tutgen.sheet.compact import shared_intros
     from tutgen.sheet.render import answer_key, key_results, marking_key, problem_view, render_sheet
     from tutgen.sheet.variants import quantity_text, sample
 
@@ -211,6 +212,7 @@ def build_job(shared: Shared, job: Job) -> JobResult:
                 lms.append(_lms(b, v, key_results(d), marks, d.system, "nominal", ""))
     views = [a.view(v, md=False) for a, v in zip(assets, views, strict=True)]  # the plots' names on the sheet
     figures = _figures(shared, systems) if "md" in shared.formats else {}
+    views = shared_intros(views)  # a section's conventions printed once per sheet (tutgen/sheet/compact.py)
     context = {**header, "problems": views}
     for kind in ("questions", "solutions"):
         tex = None

@@ -13,7 +13,7 @@ The template context of a sheet (templates/{markdown,latex}/sheet-*.j2), plain d
   ``asked_parts`` (the same as lists of
   parts, maths typeset), ``figure`` (the problem's figure, as in tutgen/figure/view.py), and
   ``solution``: the worked solution's context from :func:`tutgen.render.views.solution_view`
-  (``sections``, ``remarks``, ``checks``).
+  (``sections``, ``remarks``, ``checks``), its blocks set more tersely (tutgen/sheet/compact.py).
 
 Text is raw (the templates escape it); maths is LaTeX.
 """
@@ -29,6 +29,7 @@ from tutgen.model.system import Ask
 from tutgen.render.blocks import prose, rich
 from tutgen.render.printer import TexPrinter
 from tutgen.render.views import coordinate_items, given_items
+from tutgen.sheet.compact import compact_sections, shared_intros
 
 #: What each item of a spec's ``ask`` asks for, as a question sheet words it (maths between ``$``, LaTeX).
 ASKED = {
@@ -78,7 +79,8 @@ def problem_view(number: int, derivation: Derivation, solution: bool) -> dict[st
         "figure": _figure(as_set(s)),  # tutgen/figure/view.py: the LaTeX sheets set it beside the problem
         "asked_parts": [prose(a) for a in asked_text],
         "solution": {
-            "sections": view["sections"] if view else [],
+            # a sheet sets the same steps more tersely than a single solution (tutgen/sheet/compact.py)
+            "sections": compact_sections(view["sections"]) if view else [],
             "remarks": view["remarks"] if view else [],
             "checks": view["checks"] if view else [],
         },
@@ -103,7 +105,7 @@ def sheet_context(
     header: dict[str, str], derivations: Sequence[Derivation], solution: bool, views: list[dict[str, Any]] | None = None
 ) -> dict[str, Any]:
     problems = views if views is not None else [problem_view(i + 1, d, solution) for i, d in enumerate(derivations)]
-    return {**header, "problems": problems}
+    return {**header, "problems": shared_intros(problems)}
 
 
 _ENVS: dict[str, Any] = {}

@@ -64,9 +64,13 @@ def mass_properties(c: SolutionContext) -> dict[str, Any] | None:
     for bi, principal in zip(d.inertia, d.principal, strict=True):
         if s.coordinates and all(p.shape is Shape.POINT for p in bi.parts) and len(bi.parts) <= 1:
             continue  # a lone point mass: its inertia is m r^2 in the energies, nothing to tabulate
-        for p in bi.parts:
-            blocks += _part_blocks(c, bi, p)
-        blocks += _body_blocks(c, bi)
+        tables = _part_tables(c, bi)
+        if tables is None:
+            for p in bi.parts:
+                blocks += _part_blocks(c, bi, p)
+        else:
+            blocks += tables
+        blocks += _body_blocks(c, bi, summed=tables is not None)
         for point, found in (("O", principal.origin), ("G", principal.com)):
             if found is not None:
                 blocks += _principal_blocks(c, point, found)
@@ -189,11 +193,15 @@ def _paren(printed: str) -> str:
     return printed if _ATOM.fullmatch(printed) else f"\\left({printed}\\right)"
 
 
-def _body_blocks(c: SolutionContext, bi: BodyInertia) -> list[Block]:
+def _body_blocks(c: SolutionContext, bi: BodyInertia, summed: bool = False) -> list[Block]:
+    """The body's tensor about O (``summed``: its sum over the parts was given with the parts' tables),
+    its products of inertia, centre of mass and tensor about the centre of mass."""
     tex, num = c.tex, c.num
     out: list[Block] = []
     several = len(bi.parts) > 1
-    if several:
+    if summed:
+        out.append(subheading(f"{bi.name}, about O:"))
+    elif several:
         out.append(subheading(f"{bi.name}: the sum over its parts, about O"))
         lines, zeros = [], []
         for entry in bi.composite:
@@ -235,6 +243,138 @@ def _body_blocks(c: SolutionContext, bi: BodyInertia) -> list[Block]:
             out.append(display(f"{rule}{middle} = {result}"))
         else:
             out.append(para(text("The centre of mass is at O, so "), math("J_G = J_O"), text(".")))
+    return out
+
+
+# --- a composite of several primitives as a teacher tabulates it ------------------------------------------
+
+#: the entries of J about a centroid in a part's table (its shape's axes are the body's)
+_DIAGONAL = ("xx", "yy", "zz")
+
+
+def _tabulated_moments(p: PartInertia) -> dict[str, sp.Expr] | None:
+    """A part's J_G,xx, J_G,yy, J_G,zz as formulas in its shape's symbols, when they can be tabulated: a
+    primitive whose axes are the body's (a point: all zero); None for a turned or general part."""
+    if p.shape is Shape.POINT:
+        return dict.fromkeys(_DIAGONAL, sp.S.Zero)
+    f = p.formula
+    if f is None or f.turned:
+        return None
+    found: dict[str, sp.Expr] = {}
+    for label, formula in f.moments:
+        for entry in (x.strip() for x in label.split("=")):
+            if entry not in _DIAGONAL:
+                return None
+            found[entry] = formula
+    return found if set(found) == set(_DIAGONAL) else None
+
+
+def _part_tables(c: SolutionContext, bi: BodyInertia) -> list[Block] | None:
+    """A body of several primitives (a composite, tutorial p01) in two tables and one aligned sum, the way a
+    teacher tabulates it: each part's volume, mass and moments about its own centroid (the formula in its
+    shape's symbols over its numbers), then each part's offset d from O and its parallel-axis terms
+    m d^2 and -m d_a d_b, then each entry of J_O as the sum of both columns. None when a part cannot be
+    tabulated so (one part only, a turned or general part, symbols left in the numbers): the per-part
+    working of :func:`_part_blocks` is shown instead."""
+    tex, num = c.tex, c.num
+    if len(bi.parts) < 2:
+        return None
+    moments = [_tabulated_moments(p) for p in bi.parts]
+    if any(m is None for m in moments):
+        return None
+    values = [as_number(num(x)) for p in bi.parts for x in (p.mass, *p.centroid, *p.inertia_centroid)]
+    values += [as_number(num(sh.term)) for p in bi.parts for sh in p.shifts]
+    if any(v.free_symbols for v in values if isinstance(v, sp.Basic)):
+        return None
+
+    def number(expr: Any) -> dict[str, str]:
+        return math(tex(as_number(num(expr))))
+
+    kg_m2 = "\\ (\\mathrm{kg\\,m^2})"
+    has_volume = any(p.volume is not None for p in bi.parts)
+    head = [[text("Part")]]
+    head += [[math("V\\ (\\mathrm{m^3})")]] if has_volume else []
+    head += [[math("m\\ (\\mathrm{kg})")]] + [[math(f"J_{{G,{e}}}{kg_m2}")] for e in _DIAGONAL]
+    rows: list[list[list[dict[str, str]]]] = []
+    for p, found in zip(bi.parts, moments, strict=True):
+        assert found is not None
+        f = p.formula
+        dims = ""
+        if f is not None:
+            dims = ",\\ ".join(
+                f"{sp.latex(sym)} = {tex(as_number(num(val)))}" for sym, val in f.symbols if str(sym) != "m"
+            )
+        shape = p.shape.value.replace("_", " ")
+        first = [[text(f"{p.name} ({shape})")]]
+        first += [[]] if has_volume else []
+        # the formulas at display size, as a teacher writes them in a table (text style is too small to read)
+        first += [[math(f"\\displaystyle {tex(p.mass)}")]]
+        first += [[math(f"\\displaystyle {sp.latex(found[e])}")] for e in _DIAGONAL]
+        second = [[math(f"{dims}\\ \\mathrm{{m}}")] if dims else []]
+        second += [[number(p.volume)] if p.volume is not None else []] if has_volume else []
+        second = [
+            *second,
+            [number(p.mass)],
+            *([number(found[e].subs(dict(f.symbols)))] if f else [math("0")] for e in _DIAGONAL),
+        ]
+        rows += [first, second]
+    # a little space before each part's pair of rows (after the first)
+    parts_table = {"kind": "table", "header": head, "rows": rows, "gaps": list(range(2, len(rows), 2))}
+
+    shown = [k for k in range(len(ENTRIES)) if any(as_number(num(p.shifts[k].term)) != 0 for p in bi.parts)]
+    shift_head = [[text("Part")], [math("\\mathbf d\\ (\\mathrm{m})")]]
+    for k in shown:
+        label, i, j = ENTRIES[k]
+        if i == j:
+            d2 = " + ".join(f"d_{AXES[m]}^2" for m in range(3) if m != i)
+            shift_head.append([math(f"m\\,({d2})")])
+        else:
+            shift_head.append([math(f"-m\\,d_{AXES[i]} d_{AXES[j]}")])
+    shift_head[-1] = [math(shift_head[-1][0]["tex"] + kg_m2)]
+    shift_rows = []
+    for p in bi.parts:
+        d = ",\\ ".join(tex(as_number(num(x))) for x in p.centroid)
+        shift_rows.append([[text(p.name)], [math(f"({d})")], *([number(p.shifts[k].term)] for k in shown)])
+    shift_table = {"kind": "table", "header": shift_head, "rows": shift_rows, "gaps": []}
+
+    lines, zeros = [], []
+    for k, entry in enumerate(bi.composite):
+        label, i, j = ENTRIES[k]
+        own = sum((p.inertia_centroid[i, j] for p in bi.parts), sp.S.Zero)
+        shift = sum((p.shifts[k].term for p in bi.parts), sp.S.Zero)
+        if as_number(num(entry.total)) == 0 and as_number(num(own)) == 0 and as_number(num(shift)) == 0:
+            zeros.append(f"J_{{O,{label}}}")
+            continue
+        term = "m\\,(" + " + ".join(f"d_{AXES[m]}^2" for m in range(3) if m != i) + ")" if i == j else ""
+        term = term or f"(-m\\,d_{AXES[i]} d_{AXES[j]})"
+        sums = tex(as_number(num(own))) + " + " + _paren(tex(as_number(num(shift))))
+        lines.append(
+            f"J_{{O,{label}}} = \\textstyle\\sum_p J_{{G,{label}}} + \\sum_p {term} = {sums}"
+            f" = {_value(c, entry.total, INERTIA)}"
+        )
+    out: list[Block] = [
+        para(
+            text(
+                f"{bi.name}: each part about its own centroid, by its shape's formula (the formula in the shape's "
+                "symbols, then its numbers):"
+            )
+        ),
+        parts_table,
+        para(
+            text("Each part's centroid is at "),
+            math("\\mathbf d"),
+            text(" from O; its parallel-axis terms (the theorem, entry by entry, "),
+            math("J_{O,aa} = J_{G,aa} + m\\,d^2"),
+            text(", "),
+            math("J_{O,ab} = J_{G,ab} - m\\,d_a d_b"),
+            text("):"),
+        ),
+        shift_table,
+        para(text(f"{bi.name}: the sum over its parts, about O, from the two tables:")),
+        stacked(lines),
+    ]
+    if zeros:
+        out.append(para(math(" = ".join(zeros) + " = 0"), text(" (zero for every part).")))
     return out
 
 

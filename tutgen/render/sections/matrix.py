@@ -183,19 +183,55 @@ def determinant_blocks(c: SolutionContext) -> list[Block]:
     if det == 0:
         return [
             display("\\det H = 0"),
-            para(
-                prose(
-                    "$H$ is singular: it has no inverse, so the equations cannot be solved for every "
-                    "acceleration, $\\ddot q = H^{-1}(Q - C - G)$ does not exist."
-                )
-            ),
+            # what a singular H means is said once, in the remarks (tutgen/engine/remarks.py)
+            para(prose("$H$ is singular in every configuration; the remarks say what follows.")),
         ]
     if not (sp.sympify(det).free_symbols & coordinates):
         return []
+    shown = num(factor_det(det))
     return [
-        para(prose("Its determinant depends on the configuration; $H$ is singular where it vanishes:")),
-        display(f"\\det H = {tex(num(factor_det(det)))}"),
+        para(prose("Its determinant depends on the configuration:")),
+        display(f"\\det H = {tex(shown)}"),
+        para(prose(singular_sentence(shown, [q.q for q in c.s.coordinates], tex))),
     ]
+
+
+def singular_sentence(det: sp.Expr, coordinates: list[sp.Symbol], tex: Any) -> str:
+    """What ``det H`` says about where ``H`` is singular, derived from it (maths between ``$``): never (no
+    real zero, e.g. ``2 - \\cos^2\\theta_2 \\ge 1``), where (the zeros in its one coordinate), or, when
+    that is not decided here (several coordinates), that it is singular where the determinant vanishes.
+    Other symbols (masses, lengths) are taken positive, and the sentence says so."""
+    det = sp.sympify(det)
+    qs = [q for q in coordinates if det.has(q)]
+    params = sorted(det.free_symbols - set(coordinates), key=str)
+    positive = {p: sp.Dummy(p.name, positive=True) for p in params}
+    assumed = " (for positive values of the parameters)" if params else ""
+    if len(qs) == 1:
+        q = qs[0]
+        try:
+            zeros = sp.solveset(det.subs(positive), q, sp.S.Reals)
+        except Exception:  # sympy cannot decide (it raises many kinds, mpmath's NoConvergence too): unknown
+            zeros = None
+        if zeros is sp.S.EmptySet:
+            back = {v: k for k, v in positive.items()}
+            why = ""
+            try:  # its least value, the reason it is never zero (2 - cos^2 θ_2 ≥ 1 since cos^2 ≤ 1)
+                from sympy.calculus.util import minimum
+
+                least = minimum(det.subs(positive), q, sp.S.Reals)
+                if least.is_positive:
+                    why = f", since $\\det H \\ge {tex(least.subs(back))} > 0$ for every ${tex(q)}$"
+            except Exception:  # no closed form, or no convergence (mpmath): the zeros alone decide
+                why = ""
+            return (
+                f"It is never zero{assumed}{why}: it has no real zero in ${tex(q)}$, so $H$ is invertible in "
+                "every configuration and the equations can always be solved for the accelerations."
+            )
+        if isinstance(zeros, sp.FiniteSet):
+            back = {v: k for k, v in positive.items()}
+            where = ",\\ ".join(f"{tex(q)} = {tex(z.subs(back))}" for z in zeros)
+            return f"$H$ is singular where it vanishes{assumed}: at ${where}$."
+    return "$H$ is singular in the configurations where it vanishes, if any."
 
 
 def factor_det(det: sp.Expr) -> sp.Expr:
