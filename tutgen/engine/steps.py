@@ -458,6 +458,8 @@ def analysis_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
             Equation(_name(f"A_{i}"), m.state_matrix),
         ]
     return tuple(out)
+
+
 def constraint_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
     """The equations of a constraint step: the constraints, A, B and T; lambda in the accelerations and
     its value; H_r, C_r, G_r, Q_r and the reduced equations (tutgen.engine.constraints)."""

@@ -48,8 +48,13 @@ def lms_question(
     shown["svg"] = f"{FIGURE_MARK}{figure[0]}" if figure else ""
     # the Newton–Euler free-body diagrams are TikZ pictures of the LaTeX sheets: left out, as in Markdown
     solution = view["solution"]
+    # (a sheet may set one beside its list of forces: the list is kept, tutgen/sheet/compact.py)
     sections = [
-        {**sec, "blocks": [b for b in sec["blocks"] if b["kind"] != "freebody"]} for sec in solution["sections"]
+        {
+            **sec,
+            "blocks": [b["right"] if b["kind"] == "beside" else b for b in sec["blocks"] if b["kind"] != "freebody"],
+        }
+        for sec in solution["sections"]
     ]
     problem = {**view, "figure": shown, "solution": {**solution, "sections": sections}}
     results = yaml.safe_load(results_yaml)  # tutgen's own output, read back safely

@@ -276,6 +276,8 @@ class Conventions:
     """The notational choices of a worked solution (the spec's ``conventions:``)."""
 
     christoffel: ChristoffelConvention = ChristoffelConvention.BOTH
+
+
 class ConstraintKind(StrEnum):
     POSITION = "position"  # holonomic: f(q) = 0
     VELOCITY = "velocity"  # nonholonomic: a(q) . q_dot = 0, linear and homogeneous in the rates

@@ -71,6 +71,9 @@ class ProblemAssets:
                 return None
             if b["kind"] == "freebody" and md:
                 return {**b, "svg": fbd[b["body"]]} if b["body"] in fbd else None
+            if b["kind"] == "beside":  # a free-body diagram set beside its forces (tutgen/sheet/compact.py)
+                left = block(b["left"])
+                return {**b, "left": left} if left is not None else b["right"]
             return b
 
         solution = view.get("solution")

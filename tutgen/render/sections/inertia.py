@@ -269,6 +269,28 @@ def _tabulated_moments(p: PartInertia) -> dict[str, sp.Expr] | None:
     return found if set(found) == set(_DIAGONAL) else None
 
 
+def _volume_formula(p: Any) -> tuple[sp.Expr, str] | None:
+    """A solid part's volume in its shape's symbols (those of its moments' formulas: ``a b c`` for a box,
+    ``\\pi r^2 h`` for a cylinder, ``\\tfrac43 \\pi r^3`` for a sphere), or None (another shape, or no
+    formula): checked against the part's volume, so a wrong formula is never printed."""
+    f = p.formula
+    if f is None or p.volume is None:
+        return None
+    by_name = {str(sym): sym for sym, _ in f.symbols}
+    shape = p.shape.value
+    if shape == "box" and {"a", "b", "c"} <= by_name.keys():
+        formula, written = by_name["a"] * by_name["b"] * by_name["c"], "a b c"
+    elif shape == "cylinder" and {"r", "h"} <= by_name.keys():
+        formula, written = sp.pi * by_name["r"] ** 2 * by_name["h"], "\\pi r^{2} h"
+    elif shape == "sphere" and "r" in by_name:
+        formula, written = sp.Rational(4, 3) * sp.pi * by_name["r"] ** 3, "\\tfrac{4}{3} \\pi r^{3}"
+    else:
+        return None
+    if sp.simplify(formula.subs(dict(f.symbols)) - p.volume) != 0:
+        return None
+    return formula, written
+
+
 def _part_tables(c: SolutionContext, bi: BodyInertia) -> list[Block] | None:
     """A body of several primitives (a composite, tutorial p01) in two tables and one aligned sum, the way a
     teacher tabulates it: each part's volume, mass and moments about its own centroid (the formula in its
@@ -306,9 +328,18 @@ def _part_tables(c: SolutionContext, bi: BodyInertia) -> list[Block] | None:
             )
         shape = p.shape.value.replace("_", " ")
         first = [[text(f"{p.name} ({shape})")]]
-        first += [[]] if has_volume else []
+        volume_formula = _volume_formula(p)
+        first += (
+            ([[math(f"\\displaystyle {volume_formula[1]}")]] if volume_formula is not None else [[]])
+            if has_volume
+            else []
+        )
         # the formulas at display size, as a teacher writes them in a table (text style is too small to read)
-        first += [[math(f"\\displaystyle {tex(p.mass)}")]]
+        density = sp.simplify(p.mass / p.volume) if p.volume is not None and volume_formula is not None else None
+        if density is not None and not density.free_symbols & p.volume.free_symbols and density.free_symbols:
+            first += [[math(f"\\displaystyle {tex(density)}\\, V")]]  # m = rho V, V in the column before
+        else:
+            first += [[math(f"\\displaystyle {tex(p.mass)}")]]
         first += [[math(f"\\displaystyle {sp.latex(found[e])}")] for e in _DIAGONAL]
         second = [[math(f"{dims}\\ \\mathrm{{m}}")] if dims else []]
         second += [[number(p.volume)] if p.volume is not None else []] if has_volume else []

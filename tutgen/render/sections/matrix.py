@@ -219,8 +219,10 @@ def singular_sentence(det: sp.Expr, coordinates: list[sp.Symbol], tex: Any) -> s
                 from sympy.calculus.util import minimum
 
                 least = minimum(det.subs(positive), q, sp.S.Reals)
-                if least.is_positive:
-                    why = f", since $\\det H \\ge {tex(least.subs(back))} > 0$ for every ${tex(q)}$"
+                bound = tex(least.subs(back))
+                # a bound too long for a line of prose is left out: the sentence still says what was derived
+                if least.is_positive and tex_width(bound) <= LINE_WIDTH_PT / 3:
+                    why = f", since $\\det H \\ge {bound} > 0$ for every ${tex(q)}$"
             except Exception:  # no closed form, or no convergence (mpmath): the zeros alone decide
                 why = ""
             return (
@@ -258,6 +260,7 @@ def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
     show_c = convention is not ChristoffelConvention.ASADA_SLOTINE
     sec = section("Christoffel symbols", _christoffel_intro(show_h, show_c))
     blocks = sec["blocks"]
+    blocks.append(_christoffel_definitions(show_h, show_c))
     size = ops(d.christoffel)  # a large arm's table (tutgen.engine.lazytable) is sized without converting it
     nonzero = [] if size > budgets.PRINT_BUDGET else [(k, v) for k, v in sorted(d.christoffel.items()) if v != 0]
     if size > budgets.PRINT_BUDGET:
@@ -341,24 +344,33 @@ def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
 
 
 def _christoffel_intro(show_h: bool, show_c: bool) -> str:
-    """The section's opening sentence: the definition of each convention printed (the spec's
-    ``conventions: {christoffel: …}``), and the sum that gives C from it."""
-    h = "$h_{ijk} = \\partial H_{ij}/\\partial q_k - \\tfrac12 \\partial H_{jk}/\\partial q_i$"
-    c = "$c_{ijk} = \\tfrac12(\\partial_k H_{ij} + \\partial_j H_{ik} - \\partial_i H_{jk})$"
+    """The section's opening sentence: the convention printed (the spec's ``conventions: {christoffel: …}``);
+    the definitions and the sum that gives C from them follow as a display (:func:`_christoffel_definitions`)."""
     if show_h and show_c:
         return (
-            f"In the tutorial's convention {h}, with $C_i = \\sum_{{j,k}} h_{{ijk}}\\dot q_j \\dot q_k$; "
-            f"the symmetric symbols of the first kind are {c}, with the same sum."
+            "In the tutorial's convention (Asada and Slotine) $h_{ijk}$, not symmetric in $j, k$, and as the "
+            "symmetric symbols of the first kind $c_{ijk}$, each with the same sum for $C$:"
         )
     if show_h:
-        return (
-            f"In the tutorial's convention (Asada and Slotine) {h}, with "
-            "$C_i = \\sum_{j,k} h_{ijk}\\dot q_j \\dot q_k$; they are not symmetric in $j, k$."
+        return "In the tutorial's convention (Asada and Slotine), not symmetric in $j, k$:"
+    return "The symbols of the first kind, symmetric in $j, k$:"
+
+
+def _christoffel_definitions(show_h: bool, show_c: bool) -> Block:
+    """The definitions of the conventions printed, and C as their contraction with the rates."""
+    parts = []
+    if show_h:
+        parts.append(
+            "h_{ijk} = \\frac{\\partial H_{ij}}{\\partial q_k} - \\frac12 \\frac{\\partial H_{jk}}{\\partial q_i}"
         )
-    return (
-        f"The symbols of the first kind, symmetric in $j, k$: {c}, with "
-        "$C_i = \\sum_{j,k} c_{ijk}\\dot q_j \\dot q_k$."
-    )
+    if show_c:
+        parts.append(
+            "c_{ijk} = \\frac12\\left(\\frac{\\partial H_{ij}}{\\partial q_k} + \\frac{\\partial H_{ik}}{\\partial q_j}"
+            " - \\frac{\\partial H_{jk}}{\\partial q_i}\\right)"
+        )
+    symbol = "h_{ijk}" if show_h else "c_{ijk}"
+    parts.append(f"C_i = \\sum_{{j,k}} {symbol}\\,\\dot q_j \\dot q_k")
+    return display(",\\quad ".join(parts))
 
 
 def entry_by_entry(d: Derivation, tex: TexPrinter, numeric: Any, with_c_g: bool) -> list[Block]:
