@@ -35,7 +35,7 @@ def test_the_solution_prints_the_conventions_the_spec_asks_for(convention, h, c)
     assert ("h_{112}" in section) is h
     assert ("c_{112}" in section) is c
     # C is contracted from the symbols that are printed
-    assert ("\\sum_{j,k} h_{ijk}\\dot q_j\\dot q_k" in section) is h
+    assert ("C_i = \\sum_{j,k} h_{ijk}\\,\\dot q_j \\dot q_k" in section) is h
     assert "C = " in section
 
 

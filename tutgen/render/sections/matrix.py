@@ -337,8 +337,7 @@ def christoffel_symbols(c: SolutionContext) -> dict[str, Any] | None:
             )
         )
     if d.coriolis_vector is not None:
-        symbol = "h_{ijk}" if show_h else "c_{ijk}"
-        blocks.append(para(prose(f"Contracted with the rates, $C_i = \\sum_{{j,k}} {symbol}\\dot q_j\\dot q_k$:")))
+        blocks.append(para(prose("Contracted with the rates as above:")))
         blocks.append(display(f"C = {tex(num(d.coriolis_vector))}"))
     return sec
 
