@@ -166,6 +166,7 @@ def test_pinocchio_matches_numeric_inverse_dynamics(path: Path) -> None:
         assert error <= RTOL, f"{_spec_id(path)}: numeric RNEA differs from Pinocchio by {error:.3g} (relative)"
 
 
+@pytest.mark.slow  # 17 s; the numeric PUMA's serial route is checked against Pinocchio by default
 @pytest.mark.skipif(not HAS_SERIAL, reason="tutgen.engine.serial (the fast serial engine) does not exist yet")
 def test_pinocchio_symbolic_puma_serial_engine() -> None:
     # the target system in the default run (conftest marks the per-spec tests of the symbolic

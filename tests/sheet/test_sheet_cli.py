@@ -258,6 +258,7 @@ def test_sheet_on_a_local_dask_cluster(small: tuple[Path, Path], tmp_path: Path)
     assert tree(dask_out) == tree(out)
 
 
+@pytest.mark.slow  # 17 s; determinism across processes is also tested by the worker-count and solve tests
 def test_sheet_does_not_depend_on_the_hash_seed(small: tuple[Path, Path], tmp_path: Path) -> None:
     """Two fresh interpreters with different PYTHONHASHSEED (as on two machines) write the same bytes."""
     sheet, _ = small
