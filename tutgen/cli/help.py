@@ -10,9 +10,12 @@ capitals) instead, in the usage line and the list alike, and a bound in words ("
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
-import click
 import typer.core
+
+if TYPE_CHECKING:  # annotations only: typer >= 0.16 carries its own click, and click is not a dependency
+    import click
 
 #: Click's and Typer's texts of a bound (``x>=0``, ``1<=x<=10000``) inside a help's ``[...]``
 _RANGE = re.compile(
