@@ -4,6 +4,7 @@ packaging metadata; a package missing from pyproject.toml's list installs a tutg
 from __future__ import annotations
 
 import tomllib
+from typing import Any
 
 from tests.conftest import ROOT
 
@@ -29,3 +30,61 @@ def test_every_package_data_pattern_matches_a_file() -> None:
     for package, patterns in config["package-data"].items():
         for pattern in patterns:
             assert list(dirs[package].glob(pattern)), f"{package}: {pattern} matches no file"
+
+
+#: the import names of the runtime dependencies in pyproject.toml (pyyaml is ``yaml``; pydantic brings
+#: ``pydantic_core``, sympy ``mpmath``, typer its own click), beside the standard library and tutgen itself
+_RUNTIME_IMPORTS = {
+    "sympy",
+    "mpmath",
+    "yaml",
+    "jinja2",
+    "typer",
+    "numpy",
+    "pydantic",
+    "pydantic_core",
+    "rich",
+    "tutgen",
+}
+
+
+def _module_level_imports(tree: Any) -> set[str]:
+    """The top-level names imported when the module is imported: its body's imports, and those of ``try``
+    and ``if`` blocks at module level, but not ``if TYPE_CHECKING:`` (annotations only) nor any inside a
+    function (the lazy imports of optional extras)."""
+    import ast
+
+    names: set[str] = set()
+
+    def visit(statements: list[ast.stmt]) -> None:
+        for node in statements:
+            if isinstance(node, ast.Import):
+                names.update(alias.name.split(".")[0] for alias in node.names)
+            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+                names.add(node.module.split(".")[0])
+            elif isinstance(node, ast.If):
+                if "TYPE_CHECKING" not in ast.unparse(node.test):
+                    visit(node.body)
+                visit(node.orelse)
+            elif isinstance(node, ast.Try):
+                visit(node.body)
+
+    visit(tree.body)
+    return names
+
+
+def test_the_package_imports_only_its_declared_dependencies() -> None:
+    """`pip install .` alone must run every command: a module-level import of something only the test
+    extras bring (click, once, through typer's older releases) breaks the README's first command."""
+    import ast
+    import sys
+
+    undeclared = {}
+    for path in sorted((ROOT / "tutgen").rglob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        extra = {
+            n for n in _module_level_imports(tree) if n not in _RUNTIME_IMPORTS and n not in sys.stdlib_module_names
+        }
+        if extra:
+            undeclared[str(path.relative_to(ROOT))] = sorted(extra)
+    assert undeclared == {}
