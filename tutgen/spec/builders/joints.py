@@ -62,12 +62,7 @@ def build_joints(
             target = getattr(spec, role)
             if target in bodies or (target == GROUND and (role == "parent" or not ok)):
                 continue
-            close = difflib.get_close_matches(target, known, n=1)
-            ctx.error(
-                (*path, role),
-                f"joint '{name}' refers to unknown body '{target}' (known: {', '.join(known)})",
-                f"did you mean '{close[0]}'?" if close else None,
-            )
+            unknown_body(ctx, (*path, role), name, target, known)
             ok = False
         if ok and spec.parent == spec.child:
             ctx.error(
@@ -168,6 +163,16 @@ def build_joints(
         )
     _check_loops(ctx, links)
     return out, dict(children)
+
+
+def unknown_body(ctx: Context, path: KeyPath, joint: str, target: str, known: list[str]) -> None:
+    """The error at a joint's `parent` or `child` naming no body: the names known, and the closest one."""
+    close = difflib.get_close_matches(target, known, n=1)
+    ctx.error(
+        path,
+        f"joint '{joint}' refers to unknown body '{target}' (known: {', '.join(known)})",
+        f"did you mean '{close[0]}'?" if close else None,
+    )
 
 
 def build_motor(

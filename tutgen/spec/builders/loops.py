@@ -7,12 +7,11 @@ loop-closure equations (tutgen/engine/constraints/loops.py). Only revolute joint
 
 from __future__ import annotations
 
-import difflib
-
 import sympy as sp
 
 from tutgen.model.system import GROUND, LoopJoint
 from tutgen.spec.builders.context import Context
+from tutgen.spec.builders.joints import unknown_body
 from tutgen.spec.loader import KeyPath
 
 
@@ -45,12 +44,7 @@ def build_loop_joints(ctx: Context, bodies: set[str]) -> list[LoopJoint]:
             target = getattr(spec, role)
             if target in known:
                 continue
-            close = difflib.get_close_matches(target, known, n=1)
-            ctx.error(
-                (*path, role),
-                f"joint '{name}' refers to unknown body '{target}' (known: {', '.join(known)})",
-                f"did you mean '{close[0]}'?" if close else None,
-            )
+            unknown_body(ctx, (*path, role), name, target, known)
             ok = False
         if ok and spec.parent == spec.child:
             ctx.error((*path, "child"), f"joint '{name}' connects body '{spec.child}' to itself")
