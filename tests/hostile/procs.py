@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import sys
 import time
@@ -77,6 +78,12 @@ def children_of(pid: int) -> list[int]:
     return out
 
 
+def _default_sigint() -> None:
+    """Ctrl-C as from a terminal: a test run started in the background of a shell (``pytest &``) hands
+    its children SIGINT ignored, and the interrupt tests would then test nothing."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 @dataclass
 class Outcome:
     """A finished run of the CLI: exit status, output, how long it took."""
@@ -112,6 +119,7 @@ class Runner:
             stdout=subprocess.PIPE,
             stderr=subprocess.PIPE,
             text=True,
+            preexec_fn=_default_sigint,
         )
 
     def run(self, *args: str | Path, limit: float = 90) -> Outcome:

@@ -108,6 +108,26 @@ def _stop_workers(pool: ProcessPoolExecutor) -> None:
             proc.kill()
             proc.join(1.0)
     pool.shutdown(wait=False, cancel_futures=True)
+    _join_manager(pool)
+
+
+def _join_manager(pool: ProcessPoolExecutor) -> None:
+    """Wait for the pool's manager thread to end (it does, once its workers are gone) and forget it.
+
+    Python 3.11's exit hook (``concurrent.futures.process._python_exit``) wakes every manager thread
+    it knows by writing to a pipe that the thread closes as it ends; a thread ending at that moment
+    makes the write fail with "Bad file descriptor" and a traceback on stderr after "terminated"
+    (CPython gh-109917, fixed in 3.12). A manager joined here has closed its pipe, and one dropped
+    from the hook's table is never written to."""
+    import concurrent.futures.process as cfp
+
+    thread = getattr(pool, "_executor_manager_thread", None)
+    if thread is None:
+        return
+    thread.join(WORKER_GRACE + 2.0)
+    table = getattr(cfp, "_threads_wakeups", None)
+    if table is not None and not thread.is_alive():
+        table.pop(thread, None)
 
 
 class ProcessExecutor:
