@@ -190,7 +190,7 @@ def test_a_constant_mass_matrix_is_said_once() -> None:
     JSON keeps the engine's remark)."""
     from tutgen.render.markdown import render_markdown
 
-    d = solved(SPECS / "tutorial-1" / "p06-two-prismatic.yaml")
+    _, d, _ = solved(str(SPECS / "tutorial-1" / "p06-two-prismatic.yaml"))
     text = render_markdown(d)
     assert text.count("every Christoffel symbol vanishes") == 1
     assert any("every Christoffel symbol vanishes" in r for r in d.remarks)
