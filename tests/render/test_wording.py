@@ -43,6 +43,16 @@ def test_engine_sentences_get_typeset_maths(sentence: str, expected: str) -> Non
     assert _shown(engine_parts(sentence, tex)) == expected
 
 
+def test_a_possessive_s_is_a_word_where_s_is_a_name() -> None:
+    """The slider-crank has a coordinate s: "Lagrange's" still reads as English, and a quoted 's' or a
+    bare s in a formula is still the coordinate."""
+    tex = TexPrinter(solved(str(SPECS / "examples" / "f-two-mass-chain.yaml"))[0])
+    assert _shown(engine_parts("The Newton–Euler equations agree with Lagrange's: passed", tex)) == (
+        "The Newton–Euler equations agree with Lagrange's: passed"
+    )
+    assert "$" in _shown(engine_parts("a change of s alone", tex))
+
+
 def _texts(value: object) -> list[str]:
     """Every text part (not maths) of the view's tutgen-written content."""
     if isinstance(value, dict):

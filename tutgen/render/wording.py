@@ -71,6 +71,8 @@ def engine_parts(sentence: str, tex: TexPrinter) -> list[Part]:
     names = _system_names(tex)
     for m in re.finditer(r"'([A-Za-z_][A-Za-z0-9_]*)'|([A-Za-z_][A-Za-z0-9_]*)(?:\^(\d+))?", sentence):
         word = m.group(1) or m.group(2)
+        if m.group(2) and _after_apostrophe(sentence, m.start()):
+            continue  # the s of "Lagrange's", the t of "don't": English, even where s and t are names
         if word in names and (m.group(1) or word not in _WORDS):
             latex = names[word] + (f"^{{{m.group(3)}}}" if m.group(3) else "")
             add(m.start(), m.end(), latex)
@@ -105,6 +107,10 @@ def engine_parts(sentence: str, tex: TexPrinter) -> list[Part]:
     if pos < len(sentence):
         parts.append({"kind": "text", "text": sentence[pos:]})
     return parts
+
+
+def _after_apostrophe(sentence: str, start: int) -> bool:
+    return start >= 2 and sentence[start - 1] in "'’" and sentence[start - 2].isalpha()
 
 
 def _number_tex(text: str) -> str:
