@@ -19,15 +19,12 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from tests.codegen.compiled import GCC, CModel, compile_c
-from tests.conftest import ROOT
+from tests.codegen.compiled import GCC, CModel, compile_c, derived_lagrange
 from tutgen.codegen.printers import generate_code
 from tutgen.codegen.program import build_program
 from tutgen.engine.constraints import with_loop_closures
 from tutgen.engine.constraints.kinematics import consistent_states
-from tutgen.engine.pipeline import derive
 from tutgen.sim.model import _compile
-from tutgen.spec.validate import load_system
 
 SPECS = {
     "disc": "specs/examples/l-disc-rolling-down-incline.yaml",
@@ -38,9 +35,7 @@ STATES = 3
 RTOL = 1e-9
 
 
-@cache
-def _derived(rel: str) -> Any:
-    return derive(load_system(ROOT / rel), "lagrange")
+_derived = derived_lagrange
 
 
 @cache

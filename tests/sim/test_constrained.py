@@ -14,20 +14,19 @@ from __future__ import annotations
 
 import json
 import math
-from functools import cache
 from pathlib import Path
 
 import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from tests.codegen.compiled import derived_lagrange
 from tests.conftest import ROOT
 from tutgen.cli.main import app
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.pipeline import derive
 from tutgen.errors import SpecErrors
 from tutgen.sim.run import Settings, SimulationResult, simulate_system
-from tutgen.spec.validate import load_system
 
 pytest.importorskip("scipy")
 pytest.importorskip("matplotlib")
@@ -60,12 +59,11 @@ RUNS = {
 }
 
 
-@cache
 def _derived(rel: str) -> Derivation:
-    return derive(load_system(ROOT / rel), "lagrange")
+    return derived_lagrange(rel)  # shared with tests/codegen/test_constrained_code.py
 
 
-def _run(rel: str, t_end: float = 0.5, **changes: dict[str, str]) -> SimulationResult:
+def _run(rel: str, t_end: float = 0.25, **changes: dict[str, str]) -> SimulationResult:
     values, q0, qd0 = RUNS[rel]
     settings = Settings(
         values=values | changes.get("values", {}),
@@ -145,12 +143,14 @@ def test_a_loop_that_cannot_close_and_a_wrong_dependent_rate_are_spec_errors(tmp
         SpecErrors, match=r"initial rate of the dependent coordinate 's' is 5, and the constraints give"
     ):
         _run(SLIDER, qd0={"s": "5"})
-    values = RUNS[SLIDER][0]
-    args = [f"--set={k}={v}" for k, v in values.items() if k != "r"] + ["--set=r=0.5", "--q0=theta=pi/2"]
+    values = RUNS[DISC][0]
+    args = [f"--set={k}={v}" for k, v in values.items()] + ["--q0=phi=0", "--qd0=x=5"]
     out = tmp_path / "out"
-    result = CliRunner().invoke(app, ["simulate", str(ROOT / SLIDER), "-o", str(out), *args])
+    result = CliRunner().invoke(app, ["simulate", str(ROOT / DISC), "-o", str(out), "--no-plots", *args])
     assert result.exit_code == 3, result.output
-    assert "o-slider-crank.yaml:1:1: error: the constraints hold at no configuration" in result.output
+    assert "l-disc-rolling-down-incline.yaml:1:1: error: the initial rate of the dependent coordinate 'x'" in (
+        result.output
+    )
     assert "Traceback" not in result.output
     assert not out.exists()
 
@@ -173,3 +173,25 @@ def test_outputs_carry_the_residuals_and_the_multipliers(tmp_path: Path) -> None
     assert item["name"] == "rolling" and item["kind"] == "position" and item["multiplier"] == "lambda_1"
     assert len(item["lambda"]) == len(item["residual"]) == 11
     assert item["lambda"][0] == pytest.approx(-2 * 9.81 * 0.5 / 3, rel=1e-9)
+
+
+def test_worked_solution_simulates_the_constrained_motion() -> None:
+    """`ask: [simulation]` of a constrained spec runs the multipliers' system from a consistent start (the
+    section says so), not the unconstrained coordinates' equations."""
+    from tutgen.render.markdown import render_markdown
+    from tutgen.sim.solution import attach_simulation
+    from tutgen.spec.validate import load_system_text
+
+    text = (ROOT / DISC).read_text(encoding="utf-8")
+    # alpha in radians: a value such as 30 deg (pi/6) trips the engine's consistent-state draw (mpmath.mpf(pi/6))
+    for name, value in (("m", "2 kg"), ("R", "0.3 m"), ("alpha", "0.5"), ("g", "9.81 m/s^2")):
+        text = text.replace(f"  {name}: {{", f"  {name}: {{value: {value}, ", 1)
+    text += "simulate: {t: [0, 1], q0: {phi: 2, x: 0}, samples: 11}\nask: [equations_of_motion, simulation]\n"
+    derivation = attach_simulation(derive(load_system_text(text, "disc.yaml"), "lagrange"))
+    run = derivation.simulation
+    assert run is not None and run.check_passed
+    (x0, phi0) = (run.initial[0][1], run.initial[1][1])
+    assert (x0, phi0) == pytest.approx((0.6, 2.0), rel=1e-12)  # x = R phi, from the constraint
+    md = render_markdown(derivation)
+    assert "solved together for $\\ddot q$ and $\\lambda$ (Baumgarte-stabilised)" in md
+    assert "The dependent coordinates and rates start where the constraints put them." in md
