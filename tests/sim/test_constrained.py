@@ -173,6 +173,14 @@ def test_outputs_carry_the_residuals_and_the_multipliers(tmp_path: Path) -> None
     assert item["name"] == "rolling" and item["kind"] == "position" and item["multiplier"] == "lambda_1"
     assert len(item["lambda"]) == len(item["residual"]) == 11
     assert item["lambda"][0] == pytest.approx(-2 * 9.81 * 0.5 / 3, rel=1e-9)
+    import jsonschema
+
+    from tutgen.schemas import SCHEMAS
+
+    schema = SCHEMAS["simulation"]()
+    jsonschema.Draft202012Validator(schema).validate(doc)
+    with pytest.raises(jsonschema.ValidationError):
+        jsonschema.Draft202012Validator(schema).validate({**doc, "constraints": {**cons, "items": [{"name": 1}]}})
 
 
 def test_worked_solution_simulates_the_constrained_motion() -> None:
