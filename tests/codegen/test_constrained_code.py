@@ -11,6 +11,8 @@ entries; the C code compiles warning-free and equals the NumPy code.
 from __future__ import annotations
 
 import random
+import shutil
+import subprocess
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -20,7 +22,7 @@ import pytest
 import sympy as sp
 
 from tests.codegen.compiled import GCC, CModel, compile_c, derived_lagrange
-from tutgen.codegen.printers import generate_code
+from tutgen.codegen.printers import LANGUAGES, generate_code
 from tutgen.codegen.program import build_program
 from tutgen.engine.constraints import with_loop_closures
 from tutgen.engine.constraints.kinematics import consistent_states
@@ -168,8 +170,6 @@ def test_c_forward_dynamics_compiles_warning_free_and_equals_numpy(rel: str, tmp
 
 
 def _c_reserved() -> frozenset[str]:
-    from tutgen.codegen.printers import LANGUAGES
-
     return LANGUAGES["c"][1]()
 
 
@@ -180,3 +180,48 @@ def test_header_names_the_constraints_and_the_augmented_system() -> None:
             "Constraints (the rows of A, the entries of lambda, in this order): B_x (position), B_y (position)." in text
         )
         assert "[[H, -A^T], [A, 0]] [q_ddot; lambda] = [tau + Q - C q_dot - G; -b]" in text, language
+
+
+OCTAVE = shutil.which("octave-cli")
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(OCTAVE is None, reason="octave-cli is not installed (Debian: apt-get install octave)")
+def test_matlab_forward_dynamics_runs_in_octave_and_equals_numpy(tmp_path: Path) -> None:
+    """The backslash solve of the augmented system, A, b and the residuals under GNU Octave = NumPy's."""
+    rel = SPECS["slider-crank"]
+    program = build_program(_derived(rel), "matlab", LANGUAGES["matlab"][1](), Path(rel).name)
+    (tmp_path / f"{program.module}.m").write_text(_source(rel, "matlab"), encoding="utf-8")
+    module = _python(rel)
+    states = [_arguments(rel, v) for v in _states(rel)]
+    n = program.n
+    calls = [("forward_dynamics", "q, qd, zeros(3, 1)"), ("constraint_jacobian", "q"), ("constraint_bias", "q, qd")]
+    lines = [f"dyn = {program.module}();"]
+    for k, (q, qd, params) in enumerate(states):
+        lines += ["p = dyn.params;"]
+        lines += [f"p.{prm.name} = {float(params[prm.spec_name])!r};" for prm in program.parameters]
+        lines += [f"q = [{'; '.join(repr(float(v)) for v in q)}];", f"qd = [{'; '.join(repr(float(v)) for v in qd)}];"]
+        for fn, args in calls:
+            lines.append(
+                f"r = dyn.{fn}({args}, p); printf('{k} {fn}'); printf(' %.17g', reshape(r.', 1, [])); printf('\\n');"
+            )
+    (tmp_path / "driver.m").write_text("\n".join(lines) + "\n", encoding="utf-8")
+    run = subprocess.run(
+        [OCTAVE, "--no-gui", "--norc", "--no-history", "--quiet", "--eval", "driver"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert run.returncode == 0 and not run.stderr.strip(), run.stderr
+    got = {}
+    for line in run.stdout.splitlines():
+        k, fn, *numbers = line.split()
+        got[int(k), fn] = np.array([float(x) for x in numbers])
+    assert len(got) == len(states) * len(calls)
+    for k, (q, qd, params) in enumerate(states):
+        p = _parameters(module, params)
+        assert _relative(got[k, "forward_dynamics"], module["forward_dynamics"](q, qd, np.zeros(n), p)) < 1e-12
+        assert _relative(got[k, "constraint_jacobian"], module["constraint_jacobian"](q, p).ravel()) < 1e-13
+        assert _relative(got[k, "constraint_bias"], module["constraint_bias"](q, qd, p)) < 1e-13
