@@ -22,6 +22,7 @@ import pytest
 import sympy as sp
 
 from tests.codegen.compiled import GCC, CModel, compile_c, derived_lagrange
+from tests.conftest import ROOT
 from tutgen.codegen.printers import LANGUAGES, generate_code
 from tutgen.codegen.program import build_program
 from tutgen.engine.constraints import with_loop_closures
@@ -225,3 +226,16 @@ def test_matlab_forward_dynamics_runs_in_octave_and_equals_numpy(tmp_path: Path)
         assert _relative(got[k, "forward_dynamics"], module["forward_dynamics"](q, qd, np.zeros(n), p)) < 1e-12
         assert _relative(got[k, "constraint_jacobian"], module["constraint_jacobian"](q, p).ravel()) < 1e-13
         assert _relative(got[k, "constraint_bias"], module["constraint_bias"](q, qd, p)) < 1e-13
+
+
+def test_the_linear_model_of_a_constrained_spec_is_refused_not_wrong() -> None:
+    from typer.testing import CliRunner
+
+    from tutgen.cli.main import app
+    from tutgen.errors import EXIT_CANNOT_DERIVE
+
+    result = CliRunner().invoke(app, ["code", str(ROOT / SPECS["disc"]), "-l", "python", "--linear"])
+    assert result.exit_code == EXIT_CANNOT_DERIVE, result.output
+    assert "l-disc-rolling-down-incline.yaml:" in result.stderr
+    assert "`tutgen code --linear` does not handle `constraints`" in result.stderr
+    assert "Traceback" not in result.output

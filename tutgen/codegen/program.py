@@ -312,6 +312,15 @@ def build_program(
         ),
         ("forward_dynamics", forward_doc, ("q", "qd", "tau"), forward_matrix, forward_rhs),
     ]
+    if linear and derivation.constraints is not None:
+        from tutgen.errors import DerivationError
+
+        # K and D of all the coordinates would ignore the constraints: a wrong linear model, not a partial one
+        raise DerivationError(
+            "`tutgen code --linear` does not handle `constraints` or loop-closing joints yet: K and D would be "
+            "those of the unconstrained coordinates; generate the code without --linear",
+            derivation.constraints.kinematics.constraints[0].origin,
+        )
     if linear:
         stiffness, damping = linear_terms(derivation)
         results += [
