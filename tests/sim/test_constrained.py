@@ -203,3 +203,15 @@ def test_worked_solution_simulates_the_constrained_motion() -> None:
     md = render_markdown(derivation)
     assert "solved together for $\\ddot q$ and $\\lambda$ (Baumgarte-stabilised)" in md
     assert "The dependent coordinates and rates start where the constraints put them." in md
+
+
+def test_ask_simulation_needs_only_the_independent_coordinates_initial_values() -> None:
+    """A constrained spec's `q0` may leave out the dependent coordinates (the run solves them); an
+    unconstrained spec must still give every coordinate (tests/bad_specs/ask-simulation-without-q0.yaml)."""
+    from tutgen.spec.validate import load_system_text
+
+    text = (ROOT / SLIDER).read_text(encoding="utf-8")
+    text += "simulate: {t: [0, 1], q0: {theta: 0.3}}\nask: [equations_of_motion, simulation]\n"
+    load_system_text(text, "slider.yaml")  # no error
+    with pytest.raises(SpecErrors, match="missing: theta"):
+        load_system_text(text.replace("q0: {theta: 0.3}", "q0: {s: 0.3}"), "slider.yaml")
