@@ -239,3 +239,44 @@ def test_the_linear_model_of_a_constrained_spec_is_refused_not_wrong() -> None:
     assert "l-disc-rolling-down-incline.yaml:" in result.stderr
     assert "`tutgen code --linear` does not handle `constraints`" in result.stderr
     assert "Traceback" not in result.output
+
+
+def test_disc_forward_dynamics_equals_sympy_mechanics_lagranges_method() -> None:
+    """Independently of tutgen's derivation: the disc built with sympy's frames, ``LagrangesMethod`` with
+    ``hol_coneqs``, M_full [q_dot; q_ddot; lambda] = f_full solved at consistent states (sympy's lambda
+    is tutgen's for a constraint as written: tests/engine/test_constraints.py)."""
+    from sympy.physics.mechanics import (
+        LagrangesMethod,
+        Lagrangian,
+        Point,
+        ReferenceFrame,
+        RigidBody,
+        dynamicsymbols,
+        inertia,
+    )
+
+    m, r, g, alpha = sp.symbols("m R g alpha", positive=True)
+    x, phi = dynamicsymbols("x phi")
+    t = dynamicsymbols._t
+    frame = ReferenceFrame("N")
+    body = frame.orientnew("B", "Axis", (-phi, frame.z))
+    o = Point("O")
+    o.set_vel(frame, 0)
+    c = o.locatenew("C", x * (sp.cos(alpha) * frame.x - sp.sin(alpha) * frame.y))
+    c.set_vel(frame, c.pos_from(o).dt(frame))
+    disc = RigidBody("disc", c, body, m, (inertia(body, m * r**2 / 4, m * r**2 / 4, m * r**2 / 2), c))
+    disc.potential_energy = m * g * c.pos_from(o).dot(frame.y)
+    lm = LagrangesMethod(Lagrangian(frame, disc), [x, phi], hol_coneqs=[x - r * phi], frame=frame)
+    lm.form_lagranges_equations()
+    module = _python(SPECS["disc"])
+    rng = random.Random(5)
+    for _ in range(3):
+        values = {"m": rng.uniform(0.5, 2), "R": rng.uniform(0.5, 2), "g": 9.81, "alpha": rng.uniform(0.1, 1.2)}
+        ph, phd = rng.uniform(-2, 2), rng.uniform(-2, 2)
+        q = np.array([values["R"] * ph, ph])
+        qd = np.array([values["R"] * phd, phd])
+        subs = {m: values["m"], r: values["R"], g: values["g"], alpha: values["alpha"]}
+        subs |= {x: q[0], phi: q[1], x.diff(t): qd[0], phi.diff(t): qd[1]}
+        ref = np.array(lm.mass_matrix_full.subs(subs).LUsolve(lm.forcing_full.subs(subs)), dtype=float).ravel()
+        out = module["forward_dynamics"](q, qd, np.zeros(2), _parameters(module, values))
+        assert _relative(out, ref[2:]) < RTOL  # q_ddot (x, phi) and lambda
