@@ -215,3 +215,15 @@ def test_ask_simulation_needs_only_the_independent_coordinates_initial_values() 
     load_system_text(text, "slider.yaml")  # no error
     with pytest.raises(SpecErrors, match="missing: theta"):
         load_system_text(text.replace("q0: {theta: 0.3}", "q0: {s: 0.3}"), "slider.yaml")
+
+
+def test_a_dead_point_stops_the_run_where_the_loop_locks() -> None:
+    """r = l: at theta = 3 pi / 2 the crank and the rod both stand across the line of the piston, A loses
+    rank and [[H, -A^T], [A, 0]] is singular; the run stops there (exit 7 from the command), samples kept."""
+    result = _run(SLIDER, t_end=0.1, values={"l": "0.1"}, q0={"theta": "4.4"})
+    tr = result.trajectory
+    assert tr.stop_kind == "singular"
+    assert tr.stopped is not None and tr.stopped.startswith("the matrix [[H, -A^T], [A, 0]] is singular at t = ")
+    assert tr.stop_state is not None
+    assert tr.stop_state[0] == pytest.approx(3 * math.pi / 2, abs=1e-4)
+    assert 0 < len(tr.t) < 101 and result.residuals is not None and len(result.residuals) == len(tr.t)
