@@ -227,3 +227,18 @@ def test_a_dead_point_stops_the_run_where_the_loop_locks() -> None:
     assert tr.stop_state is not None
     assert tr.stop_state[0] == pytest.approx(3 * math.pi / 2, abs=1e-4)
     assert 0 < len(tr.t) < 101 and result.residuals is not None and len(result.residuals) == len(tr.t)
+
+
+def test_an_input_in_a_constraint_is_refused_at_its_place() -> None:
+    """b = A_dot q_dot has no time derivatives: a constraint that moves in time would give a wrong motion."""
+    from tutgen.spec.validate import load_system_text
+
+    text = (ROOT / DISC).read_text(encoding="utf-8")
+    text += "simulate: {t: [0, 1], q0: {phi: 0, x: 0}, inputs: {R: 0.3 + 0.01*t}}\n"
+    derivation = derive(load_system_text(text, "disc.yaml"), "lagrange")
+    settings = Settings(values={"m": "2", "alpha": "0.5", "g": "9.81"}, t_end=0.1, samples=11)
+    with pytest.raises(SpecErrors) as err:
+        simulate_system(derivation, settings, "disc.yaml")
+    line = len(text.splitlines())
+    assert f"disc.yaml:{line}:" in str(err.value)
+    assert "input 'R' enters the constraints, which would then change in time" in str(err.value)

@@ -186,6 +186,20 @@ def simulate_system(derivation: Derivation, settings: Settings, spec_file: str) 
 
     # every parameter the model evaluates needs a value or an input: name each one, where declared
     errors = []
+    if derivation.constraints is not None and sim is not None:
+        # A and b = A_dot q_dot hold for constraints that do not change in time: an input in one would
+        # make it move (its time derivatives are missing from b), so the motion would be wrong
+        used = set().union(*(sp.sympify(f).free_symbols for f in derivation.constraints.kinematics.functions))
+        for name in inputs:
+            if params[name].symbol in used:
+                errors.append(
+                    SpecError(
+                        sim.place(f"inputs.{name}"),
+                        f"input '{name}' enters the constraints, which would then change in time; the "
+                        "simulation takes constraints fixed in time only",
+                        f"give {name} a constant value (in `parameters` or --set {name}=VALUE)",
+                    )
+                )
     needed = _needed_parameters(derivation, inputs)
     for p in system.parameters:
         if p.symbol in needed and p.symbol not in values and p.name not in inputs:
