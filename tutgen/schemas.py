@@ -456,6 +456,33 @@ def simulation_schema() -> dict[str, Any]:
                     },
                 ]
             },
+            "constraints": {
+                "description": "A constrained spec's run only: the constraints' residuals and multipliers "
+                "at the samples (docs/simulate.md#constrained-specs).",
+                "type": "object",
+                "properties": {
+                    "method": {"const": "baumgarte"},
+                    "stabilisation": {"type": "number", "description": "Baumgarte's rate alpha, 1/s."},
+                    "solved_positions": {"type": "array", "items": {"type": "string"}},
+                    "solved_rates": {"type": "array", "items": {"type": "string"}},
+                    "max_residual": number_or_null,
+                    "items": {
+                        "type": "array",
+                        "items": {
+                            "type": "object",
+                            "properties": {
+                                "name": {"type": "string"},
+                                "kind": {"enum": ["position", "velocity"]},
+                                "multiplier": {"type": "string"},
+                                "residual": series,
+                                "lambda": series,
+                            },
+                            "required": ["name", "kind", "multiplier", "residual", "lambda"],
+                        },
+                    },
+                },
+                "required": ["method", "stabilisation", "max_residual", "items"],
+            },
         },
         "required": ["tutgen", "format", "spec", "coordinates", "t", "q", "qd", "energy", "energy_check", "stopped"],
     }

@@ -99,3 +99,14 @@ class CModel:
             out.ctypes.data_as(ctypes.POINTER(ctypes.c_double)),
         )
         return out, int(status)
+
+
+@cache
+def derived_lagrange(rel: str) -> Any:
+    """The Lagrange derivation of a spec (path relative to the repository), once per session: the constrained
+    examples' code and simulation tests share it."""
+    from tests.conftest import ROOT
+    from tutgen.engine.pipeline import derive
+    from tutgen.spec.validate import load_system
+
+    return derive(load_system(ROOT / rel), "lagrange")

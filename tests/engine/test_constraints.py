@@ -278,16 +278,15 @@ def test_four_bar_against_lagranges_method() -> None:
         assert ours == pytest.approx([float(v) for v in lam], rel=1e-8, abs=1e-10)
 
 
-def test_code_refuses_a_constrained_spec() -> None:
-    """Generated code would be the unconstrained coordinates' dynamics: refused, not silently wrong."""
+def test_code_of_a_constrained_spec_has_its_constraints() -> None:
+    """Generated code carries the constraints (tests/codegen/test_constrained_code.py checks the numbers)."""
     from typer.testing import CliRunner
 
     from tutgen.cli.main import app
-    from tutgen.errors import EXIT_CANNOT_DERIVE
 
     result = CliRunner().invoke(app, ["code", DISC, "-l", "python"])
-    assert result.exit_code == EXIT_CANNOT_DERIVE, result.output
-    assert "does not handle `constraints` or loop-closing joints yet" in result.stderr
+    assert result.exit_code == 0, result.output
+    assert "def constraint_jacobian(" in result.stdout
 
 
 SLIDER_CRANK = str(SPECS / "examples" / "o-slider-crank.yaml")

@@ -37,7 +37,7 @@ _C_MATH = (
 _C_KEYWORDS = (
     "auto break case char const continue default do double else enum extern float for goto if inline int long "
     "register restrict return short signed sizeof static struct switch typedef union unsigned void volatile while "
-    "_Bool _Complex _Imaginary bool true false tg_i tg_j tg_k tg_s"
+    "_Bool _Complex _Imaginary bool true false tg_i tg_j tg_k tg_s tg_t tg_p"
 )
 _MATLAB_RESERVED = (
     "break case catch classdef continue else elseif end for function global if otherwise parfor persistent return "
@@ -59,6 +59,16 @@ def _header(program: Program, comment: str) -> list[str]:
         *_CONVENTIONS,
         f"H, C q_dot and G: {program.route}.",
     ]
+    if program.constraints:
+        lines[4] = "inverse_dynamics: tau = H q_ddot + C q_dot + G - Q (without the constraint forces A^T lambda)."
+        lines[5:5] = [
+            "Constraints (the rows of A, the entries of lambda, in this order): "
+            + ", ".join(f"{name} ({kind})" for name, kind in program.constraints)
+            + ".",
+            "H, C, G, Q are those of all the coordinates; the constraints add A^T lambda to the right-hand",
+            "side, with A q_ddot + b = 0 (b = A_dot q_dot); forward_dynamics returns q_ddot and lambda, n + m:",
+            "[[H, -A^T], [A, 0]] [q_ddot; lambda] = [tau + Q - C q_dot - G; -b].",
+        ]
     if program.renamed:
         pairs = ", ".join(f"{a} -> {b}" for a, b in program.renamed)
         lines.append(f"Spec names renamed (keywords or reserved names of this language): {pairs}.")
@@ -110,8 +120,8 @@ def _python(program: Program) -> str:
     return "\n".join(out) + "\n"
 
 
-#: The functions whose result is an n x n matrix (the others give a vector, or U a scalar).
-SQUARE = frozenset({"mass_matrix", "coriolis_matrix", "linear_stiffness", "linear_damping"})
+#: The functions whose result is a matrix: n x n, or m x n for A (the others give a vector, or U a scalar).
+SQUARE = frozenset({"mass_matrix", "coriolis_matrix", "linear_stiffness", "linear_damping", "constraint_jacobian"})
 
 
 def _python_function(program: Program, fn: Function, doprint: Callable[[sp.Expr], str]) -> list[str]:
@@ -128,6 +138,7 @@ def _python_function(program: Program, fn: Function, doprint: Callable[[sp.Expr]
     lines.append(f"    shape = {shape}")
 
     def fill(target: str, m: sp.ImmutableMatrix, square: bool) -> list[str]:
+        # n x n results (and A, m x n) stay matrices for n = 1 too
         dims = f"({m.rows}, {m.cols})" if square else f"({m.rows},)"
         body = [f"    {target} = numpy.zeros(shape + {dims})"]
         for i in range(m.rows):
@@ -143,7 +154,6 @@ def _python_function(program: Program, fn: Function, doprint: Callable[[sp.Expr]
     elif fn.name == "potential_energy":
         lines += [f"    return numpy.zeros(shape) + {doprint(fn.result[0, 0])}"]
     else:
-        # n x n results stay matrices for n = 1 too
         lines += [*fill("out", fn.result, fn.name in SQUARE), "    return out"]
     return lines
 
@@ -161,8 +171,14 @@ def _c(program: Program) -> str:
     out = ["/*"] + [f" *{line[2:]}" if len(line) > 2 else " *" for line in _header(program, "* ")]
     out += [
         " *",
-        " * Pointers: q, qd, qdd, tau point to n = " + str(program.n) + " doubles; out to n or n*n (row-major).",
-        f" * {m}_forward_dynamics returns 0, or 1 when H is not positive definite (no result written).",
+        " * Pointers: q, qd, qdd, tau point to n = "
+        + str(program.n)
+        + " doubles; out to n or n*n (row-major)"
+        + (f", m = {len(program.constraints)} or m*n for the constraints." if program.constraints else "."),
+        f" * {m}_forward_dynamics returns 0, or 1 when H is not positive definite (no result written)."
+        if not program.constraints
+        else f" * {m}_forward_dynamics writes n + m = {program.n + len(program.constraints)} doubles (q_ddot, then "
+        "lambda) and returns 0, or 1 when [[H, -A^T], [A, 0]] is singular (no result written).",
         " * Needs only math.h: cc -O2 -std=c99 -c this.c (link with -lm).",
         " */",
         "#include <math.h>",
@@ -209,6 +225,8 @@ def _c_function(program: Program, fn: Function, doprint: Callable[[sp.Expr], str
         lines += [f"    out[{i * r.cols + j}] = {doprint(r[i, j])};" for i in range(r.rows) for j in range(r.cols)]
         return [*lines, "}"]
     h, rhs = fn.result, fn.solve
+    if program.constraints:
+        return [*lines, *_c_augmented_solve(h, rhs, doprint), "}"]
     lines.append(f"    double H[{n * n}], rhs[{n}];")
     lines += [f"    H[{i * n + j}] = {doprint(h[i, j])};" for i in range(n) for j in range(n)]
     lines += [f"    rhs[{i}] = {doprint(rhs[i])};" for i in range(n)]
@@ -237,6 +255,46 @@ def _c_function(program: Program, fn: Function, doprint: Callable[[sp.Expr], str
         "    }",
         "    return 0;",
         "}",
+    ]
+    return lines
+
+
+def _c_augmented_solve(k: sp.ImmutableMatrix, rhs: sp.ImmutableMatrix, doprint: Callable[[sp.Expr], str]) -> list[str]:
+    """The augmented system K x = rhs (K = [[H, -A^T], [A, 0]], indefinite: no Cholesky) by Gaussian
+    elimination with partial pivoting; returns 1 (no result written) at a zero pivot."""
+    s = k.rows
+    lines = [f"    double H[{s * s}], rhs[{s}];"]
+    lines += [f"    H[{i * s + j}] = {doprint(k[i, j])};" for i in range(s) for j in range(s)]
+    lines += [f"    rhs[{i}] = {doprint(rhs[i])};" for i in range(s)]
+    lines += [
+        "    /* Gaussian elimination with partial pivoting, then back substitution */",
+        f"    for (int tg_j = 0; tg_j < {s}; tg_j++) {{",
+        "        int tg_p = tg_j;",
+        f"        for (int tg_i = tg_j + 1; tg_i < {s}; tg_i++)",
+        f"            if (fabs(H[tg_i * {s} + tg_j]) > fabs(H[tg_p * {s} + tg_j])) tg_p = tg_i;",
+        f"        if (!(fabs(H[tg_p * {s} + tg_j]) > 0.0)) return 1;",
+        "        if (tg_p != tg_j) {",
+        f"            for (int tg_k = 0; tg_k < {s}; tg_k++) {{",
+        f"                double tg_t = H[tg_j * {s} + tg_k];",
+        f"                H[tg_j * {s} + tg_k] = H[tg_p * {s} + tg_k];",
+        f"                H[tg_p * {s} + tg_k] = tg_t;",
+        "            }",
+        "            double tg_t = rhs[tg_j];",
+        "            rhs[tg_j] = rhs[tg_p];",
+        "            rhs[tg_p] = tg_t;",
+        "        }",
+        f"        for (int tg_i = tg_j + 1; tg_i < {s}; tg_i++) {{",
+        f"            double tg_t = H[tg_i * {s} + tg_j] / H[tg_j * {s} + tg_j];",
+        f"            for (int tg_k = tg_j; tg_k < {s}; tg_k++) H[tg_i * {s} + tg_k] -= tg_t * H[tg_j * {s} + tg_k];",
+        "            rhs[tg_i] -= tg_t * rhs[tg_j];",
+        "        }",
+        "    }",
+        f"    for (int tg_i = {s - 1}; tg_i >= 0; tg_i--) {{",
+        "        double tg_t = rhs[tg_i];",
+        f"        for (int tg_k = tg_i + 1; tg_k < {s}; tg_k++) tg_t -= H[tg_i * {s} + tg_k] * out[tg_k];",
+        f"        out[tg_i] = tg_t / H[tg_i * {s} + tg_i];",
+        "    }",
+        "    return 0;",
     ]
     return lines
 

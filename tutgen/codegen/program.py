@@ -20,6 +20,15 @@ Conventions of the generated functions (the same in every language):
   dampers, loads and the spec's generalized forces, with their parameters from ``p``, in Q);
 - ``forward_dynamics(q, qd, tau, p)`` is its inverse, q_ddot = H^-1 (tau + Q - C q_dot - G);
 - matrices are row-major; parameters without a value in the spec have no default.
+
+A constrained spec (`constraints:`, loop-closing joints; tutgen/engine/constraints/) keeps H, C, G, Q of
+all n coordinates and adds the m constraints (loop-closure equations first, then the spec's, as the
+derivation numbers the multipliers lambda_k): ``constraint_residual(q, qd, p)`` (f_k(q) of a position
+constraint, a_k(q) . q_dot of a velocity one), ``constraint_jacobian(q, p)`` (A, m x n) and
+``constraint_bias(q, qd, p)`` (b = A_dot q_dot, so that A q_ddot + b = 0); ``forward_dynamics`` then
+solves the augmented system [[H, -A^T], [A, 0]] [q_ddot; lambda] = [tau + Q - C q_dot - G; -b] (the
+constraint forces A^T lambda on the right of H q_ddot + C q_dot + G = Q + tau + A^T lambda) and returns
+q_ddot and lambda, n + m entries.
 """
 
 from __future__ import annotations
@@ -107,6 +116,8 @@ class Program:
     functions: tuple[Function, ...]
     renamed: tuple[tuple[str, str], ...]
     route: str  # how H, C q_dot and G were obtained (said in the header)
+    # a constrained spec's constraints, (name, "position" | "velocity"), in the multipliers' order
+    constraints: tuple[tuple[str, str], ...] = ()
 
     @property
     def n(self) -> int:
@@ -265,6 +276,32 @@ def build_program(
                 None,
             )
         )
+    constraints: tuple[tuple[str, str], ...] = ()
+    forward_matrix, forward_rhs = hm, tau + q_vec - c_vec - g_vec
+    forward_doc = "q_ddot = H^-1 (tau + Q - C q_dot - G) (n); tau as in inverse_dynamics."
+    if derivation.constraints is not None:
+        ck = derivation.constraints.kinematics
+        constraints = tuple((c.name, c.kind.value) for c in ck.constraints)
+        m = len(constraints)
+        a = ck.jacobian
+        results += [
+            (
+                "constraint_residual",
+                "The constraints' residuals (m): f_k(q) of a position constraint, a_k(q) . q_dot of a velocity one.",
+                ("q", "qd"),
+                sp.ImmutableMatrix(list(ck.functions)),
+                None,
+            ),
+            ("constraint_jacobian", "A(q), the constraint Jacobian (m x n): A q_dot = 0.", ("q",), a, None),
+            ("constraint_bias", "b = A_dot q_dot (m), so that A q_ddot + b = 0.", ("q", "qd"), ck.bias, None),
+        ]
+        # [[H, -A^T], [A, 0]] [q_ddot; lambda] = [tau + Q - C q_dot - G; -b]
+        forward_matrix = sp.ImmutableMatrix(sp.BlockMatrix([[hm, -a.T], [a, sp.zeros(m, m)]]).as_explicit())
+        forward_rhs = sp.ImmutableMatrix([*forward_rhs, *(-ck.bias)])
+        forward_doc = (
+            "q_ddot and lambda (n + m): [[H, -A^T], [A, 0]] [q_ddot; lambda] = [tau + Q - C q_dot - G; -b], "
+            "the constrained motion and its multipliers; tau as in inverse_dynamics."
+        )
     results += [
         (
             "inverse_dynamics",
@@ -273,14 +310,17 @@ def build_program(
             hm * qdd + c_vec + g_vec - q_vec,
             None,
         ),
-        (
-            "forward_dynamics",
-            "q_ddot = H^-1 (tau + Q - C q_dot - G) (n); tau as in inverse_dynamics.",
-            ("q", "qd", "tau"),
-            hm,
-            tau + q_vec - c_vec - g_vec,
-        ),
+        ("forward_dynamics", forward_doc, ("q", "qd", "tau"), forward_matrix, forward_rhs),
     ]
+    if linear and derivation.constraints is not None:
+        from tutgen.errors import DerivationError
+
+        # K and D of all the coordinates would ignore the constraints: a wrong linear model, not a partial one
+        raise DerivationError(
+            "`tutgen code --linear` does not handle `constraints` or loop-closing joints yet: K and D would be "
+            "those of the unconstrained coordinates; generate the code without --linear",
+            derivation.constraints.kinematics.constraints[0].origin,
+        )
     if linear:
         stiffness, damping = linear_terms(derivation)
         results += [
@@ -325,6 +365,7 @@ def build_program(
         functions=tuple(functions),
         renamed=renamed,
         route=route,
+        constraints=constraints,
     )
 
 

@@ -42,14 +42,6 @@ def code_for_spec(spec: Path, language: str, timeout: float | None = None, linea
     with deadline(timeout):
         stage("loading the specs", spec.name)
         system = load_system(spec)
-        if system.is_constrained:  # H, C, G are the unconstrained coordinates': they would ignore the constraints
-            from tutgen.errors import DerivationError
-
-            raise DerivationError(
-                "`tutgen code` does not handle `constraints` or loop-closing joints yet: the code would be that of "
-                "the unconstrained coordinates; use `tutgen solve` for the constrained equations",
-                system.origin,
-            )
         stage("derivation")
         derivation = derive(system, "lagrange")
         stage("code generation", language)

@@ -45,6 +45,18 @@ def write_simulation(spec: Path, directory: Path, settings: Settings, *, plots: 
         f"integrated t = {result.t_start:g} .. {tr.t[-1] if len(tr.t) else result.t_start:g} s with {tr.method} "
         f"({tr.steps} steps, {tr.evaluations} evaluations, rtol {result.rtol:g})"
     )
+    if result.solved_positions or result.solved_rates:
+        start = ", ".join(
+            f"{name} = {result.q0[result.coordinates.index(name)]:.6g}" for name in result.solved_positions
+        )
+        rates = ", ".join(
+            f"{name}_dot = {result.qd0[result.coordinates.index(name)]:.6g}" for name in result.solved_rates
+        )
+        lines.append(f"from the constraints at the start: {', '.join(x for x in (start, rates) if x)}")
+    if result.max_residual is not None:
+        lines.append(
+            f"largest constraint residual {result.max_residual:.3g} (Baumgarte rate {result.stabilisation:.3g} 1/s)"
+        )
     if result.conservative and result.drift is not None:
         verdict = "ok" if result.check_passed else "FAILED"
         lines.append(f"relative energy drift {result.drift:.3g} (tolerance {result.tolerance:.3g}): {verdict}")

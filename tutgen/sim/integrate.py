@@ -1,6 +1,7 @@
 """Forward dynamics integrated step by step with scipy's ODE solvers, sampled on a fixed grid.
 
-The state is y = (q, q_dot); y' = (q_dot, H(q)^-1 (Q - C q_dot - G)). The solver is driven one step
+The state is y = (q, q_dot); y' = (q_dot, H(q)^-1 (Q - C q_dot - G)), or for a constrained spec the
+q_ddot of the augmented system (:meth:`tutgen.sim.model.NumericModel.accelerations`). The solver is driven one step
 at a time (``scipy.integrate`` solver classes, as ``solve_ivp`` drives them) so that a run that must
 stop keeps what it has: the samples up to the last accepted step are returned with the reason
 (:class:`Trajectory` ``stopped``). It stops when H is singular or badly conditioned at a state the
@@ -71,7 +72,8 @@ def _derivative(model: NumericModel, n: int, counter: list[int]):  # noqa: ANN20
             condition = scale[0] / abs(float(h[0, 0])) if h[0, 0] != 0 else np.inf
         if not np.isfinite(condition) or condition > SINGULAR_CONDITION or not np.all(np.isfinite(rhs)):
             raise _Singular(t, q.copy(), float(condition))
-        return np.concatenate([qd, np.linalg.solve(h, rhs)])
+        # a constrained spec's solve gives (q_ddot, lambda): the state needs q_ddot
+        return np.concatenate([qd, np.linalg.solve(h, rhs)[:n]])
 
     return f
 
@@ -116,7 +118,7 @@ def integrate(
         chosen = choose_method(model, t0, t1, y0) if method == "auto" else method
         solver = getattr(si, chosen)(_derivative(model, n, counter), t0, y0, t1, rtol=rtol, atol=atol)
     except _Singular as exc:
-        return _stopped(grid[:0], out[:0], n, method, 0, counter[0], exc)
+        return _stopped(grid[:0], out[:0], n, method, 0, counter[0], exc, model.matrix_name)
     out[0] = y0
     done = 1  # samples filled
     steps = 0
@@ -128,7 +130,7 @@ def integrate(
         try:
             message = solver.step()
         except _Singular as exc:
-            return _stopped(grid[:done], out[:done], n, chosen, steps, counter[0], exc)
+            return _stopped(grid[:done], out[:done], n, chosen, steps, counter[0], exc, model.matrix_name)
         steps += 1
         if solver.status == "failed":
             stop = ("failed", f"the integrator failed: {message}", solver.t, tuple(solver.y[:n]))
@@ -157,7 +159,14 @@ def integrate(
 
 
 def _stopped(
-    t: np.ndarray, y: np.ndarray, n: int, method: str, steps: int, evaluations: int, exc: _Singular
+    t: np.ndarray,
+    y: np.ndarray,
+    n: int,
+    method: str,
+    steps: int,
+    evaluations: int,
+    exc: _Singular,
+    matrix: str = "the mass matrix H",
 ) -> Trajectory:
     condition = "infinite" if not np.isfinite(exc.condition) else f"{exc.condition:.3g}"
     return Trajectory(
@@ -167,7 +176,7 @@ def _stopped(
         method=method,
         steps=steps,
         evaluations=evaluations,
-        stopped=f"the mass matrix H is singular at t = {exc.t:.6g} s (condition number {condition})",
+        stopped=f"{matrix} is singular at t = {exc.t:.6g} s (condition number {condition})",
         stop_kind="singular",
         stop_time=exc.t,
         stop_state=tuple(float(v) for v in exc.q),

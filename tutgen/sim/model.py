@@ -45,10 +45,39 @@ class NumericModel:
 
     scalar: Callable[..., tuple[list[list[float]], list[float]]]  # (q, qd, p) -> (H, Q - C q_dot - G), floats
 
+    # a constrained spec's (tutgen/sim/constrained.py): the constraints' kinds ("position" | "velocity")
+    # and names in the multipliers' order, their residuals f_k(q) or a_k(q) . q_dot as plain floats, A(q),
+    # and the Baumgarte rate alpha (1/s) of the stabilised acceleration constraint
+    constraints: tuple[tuple[str, str], ...] = ()
+    residual: Callable[..., list[float]] | None = None
+    constraint_jacobian: Callable[[np.ndarray, Any], np.ndarray] | None = None
+    stabilisation: float = 0.0
+
+    @property
+    def matrix_name(self) -> str:
+        """What ``accelerations`` returns as its matrix, as a message names it."""
+        return "the matrix [[H, -A^T], [A, 0]]" if self.constraints else "the mass matrix H"
+
     def accelerations(self, t: float, q: np.ndarray, qd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(H, Q - C q_dot - G) at one state, so that q_ddot = H^-1 (Q - C q_dot - G)."""
-        h, rhs = self.scalar(q, qd, self.parameters(t, q, qd))
-        return np.array(h), np.array(rhs)
+        """(H, Q - C q_dot - G) at one state, so that q_ddot = H^-1 (Q - C q_dot - G).
+
+        For a constrained spec, (K, r) with K = [[H, -A^T], [A, 0]] and r = [Q - C q_dot - G; -b - 2 alpha
+        A q_dot - alpha^2 f], f the position constraints' residuals (Baumgarte's stabilisation: the
+        residual e of each constraint obeys e'' + 2 alpha e' + alpha^2 e = 0, or e' + 2 alpha e = 0 for a
+        velocity constraint, instead of drifting); K^-1 r = (q_ddot, lambda)."""
+        p = self.parameters(t, q, qd)
+        h, rhs = self.scalar(q, qd, p)
+        h, rhs = np.array(h), np.array(rhs)
+        if self.constraints and self.residual is not None and self.stabilisation:
+            n = len(q)
+            alpha = self.stabilisation
+            rates = h[n:, :n] @ qd  # A q_dot: the velocity constraints' residuals, the position ones' rates
+            rhs[n:] -= 2 * alpha * rates
+            residual = self.residual(q, qd, p)
+            for k, (_, kind) in enumerate(self.constraints):
+                if kind == "position":
+                    rhs[n + k] -= alpha**2 * residual[k]
+        return h, rhs
 
     def energies(self, t: np.ndarray, q: np.ndarray, qd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Kinetic and potential energy along a trajectory (rows of q, qd at the times t)."""
@@ -82,13 +111,18 @@ def numeric_model(
     derivation: Derivation,
     values: Mapping[str, float],
     inputs: Mapping[str, sp.Expr],
+    stabilisation: float = 0.0,
 ) -> NumericModel:
     """Compile ``derivation``'s dynamics with the parameters ``values`` (spec name -> float) and the
-    ``inputs`` (spec name -> expression of t, parameters, coordinates and rates)."""
+    ``inputs`` (spec name -> expression of t, parameters, coordinates and rates); ``stabilisation`` is a
+    constrained spec's Baumgarte rate alpha (:meth:`NumericModel.accelerations`)."""
     _, reserved, printer = LANGUAGES["python"]
     program = build_program(derivation, "python", reserved(), "simulation")
     namespace = _compile(printer(program), "model")
     scalar = _compile(_scalar_source(program), "scalar")["accelerations"]
+    residual = None
+    if program.constraints:
+        residual = _compile(_scalar_source(program, "constraint_residual"), "residual")["constraint_residual"]
     system = derivation.system
     by_spec = {p.spec_name: p.name for p in program.parameters}
     base = {by_spec[k]: float(v) for k, v in values.items() if k in by_spec}
@@ -103,27 +137,35 @@ def numeric_model(
         parameters=parameters,
         scalar=scalar,
         conservative=_is_conservative(derivation, values, inputs),
+        constraints=program.constraints,
+        residual=residual,
+        constraint_jacobian=namespace.get("constraint_jacobian"),
+        stabilisation=stabilisation,
     )
 
 
-def _scalar_source(program: Program) -> str:
+def _scalar_source(program: Program, name: str = "forward_dynamics") -> str:
     """forward_dynamics' H and right-hand side (tau = 0) as one plain-float function of lists: the
-    right-hand side of the integration, called thousands of times, without NumPy's per-call overhead."""
+    right-hand side of the integration, called thousands of times, without NumPy's per-call overhead
+    (``accelerations(q, qd, p)``); or another function of ``q, qd`` by its ``name``, returning its
+    result's entries as a list (``constraint_residual(q, qd, p)``)."""
     from sympy.printing.pycode import PythonCodePrinter
 
     from tutgen.codegen.program import uses
 
     printer = PythonCodePrinter({"fully_qualified_modules": True, "standard": "python3"})
-    fn = next(f for f in program.functions if f.name == "forward_dynamics")
+    fn = next(f for f in program.functions if f.name == name)
     table = uses(fn, program)
     zero = {sp.Symbol(name): sp.Integer(0) for name in program.forces}
-    lines = ["import math", "def accelerations(q, qd, p):"]
+    lines = ["import math", f"def {'accelerations' if fn.solve is not None else name}(q, qd, p):"]
     for a in ("q", "qd"):
-        lines += [f"    {name} = {a}[{i}]" for i, name in table[a]]
+        lines += [f"    {name} = {a}[{i}]" for i, name in table.get(a, ())]
     lines += [f"    {name} = p.{name}" for _, name in table["p"]]
     lines += [f"    {s} = {printer.doprint(e.xreplace(zero))}" for s, e in fn.assignments]
     h, rhs = fn.result, fn.solve
-    assert rhs is not None
+    if rhs is None:
+        lines.append(f"    return [{', '.join(printer.doprint(e) for e in h)}]")
+        return "\n".join(lines) + "\n"
     rows = ", ".join("[" + ", ".join(printer.doprint(h[i, j]) for j in range(h.cols)) + "]" for i in range(h.rows))
     lines.append(f"    return [{rows}], [{', '.join(printer.doprint(e.xreplace(zero)) for e in rhs)}]")
     return "\n".join(lines) + "\n"

@@ -29,13 +29,18 @@ def _number(x: float) -> str:
 
 
 def trajectory_csv(result: SimulationResult) -> str:
-    """One row per sample: t, each coordinate, each rate (NAME_dot), then T, U and E = T + U."""
+    """One row per sample: t, each coordinate, each rate (NAME_dot), then T, U and E = T + U; for a
+    constrained spec then each constraint's residual (residual_NAME) and each multiplier (lambda_k)."""
     names = result.coordinates
     header = ["t", *names, *(f"{n}_dot" for n in names), "kinetic_energy", "potential_energy", "total_energy"]
+    header += [f"residual_{name}" for name, _ in result.constraints]
+    header += [f"lambda_{k + 1}" for k in range(len(result.constraints))]
     rows = [",".join(header)]
     tr = result.trajectory
     for k in range(len(tr.t)):
         values = [tr.t[k], *tr.q[k], *tr.qd[k], result.kinetic[k], result.potential[k], result.total[k]]
+        if result.residuals is not None and result.multipliers is not None:
+            values += [*result.residuals[k], *result.multipliers[k]]
         rows.append(",".join(_number(v) for v in values))
     return "\n".join(rows) + "\n"
 
@@ -89,4 +94,22 @@ def trajectory_json(result: SimulationResult) -> str:
             "q": list(tr.stop_state) if tr.stop_state is not None else None,
         },
     }
+    if result.constraints and result.residuals is not None and result.multipliers is not None:
+        doc["constraints"] = {
+            "method": "baumgarte",
+            "stabilisation": result.stabilisation,
+            "solved_positions": list(result.solved_positions),
+            "solved_rates": list(result.solved_rates),
+            "max_residual": result.max_residual,
+            "items": [
+                {
+                    "name": name,
+                    "kind": kind,
+                    "multiplier": f"lambda_{k + 1}",
+                    "residual": _list(result.residuals[:, k]),
+                    "lambda": _list(result.multipliers[:, k]),
+                }
+                for k, (name, kind) in enumerate(result.constraints)
+            ],
+        }
     return json.dumps(doc, indent=1, allow_nan=False, default=_number) + "\n"

@@ -44,10 +44,14 @@ def _png(fig: object) -> bytes:
 
 
 def plot_png(result: SimulationResult) -> bytes:
-    """q(t), q_dot(t) and T, U, E(t), one panel each, as a PNG."""
+    """q(t), q_dot(t) and T, U, E(t), one panel each, as a PNG; for a constrained spec also the
+    multipliers lambda(t) and the constraints' residuals |f(t)| (log scale)."""
     tr = result.trajectory
-    fig = _figure(7.5, 8.0)
-    axes = fig.subplots(3, 1, sharex=True)
+    constrained = result.residuals is not None and result.multipliers is not None
+    fig = _figure(7.5, 11.5 if constrained else 8.0)
+    if constrained:
+        fig.subplots_adjust(top=0.95, bottom=0.06)
+    axes = fig.subplots(5 if constrained else 3, 1, sharex=True)
     for i, name in enumerate(result.coordinates):
         axes[0].plot(tr.t, tr.q[:, i], label=name)
         axes[1].plot(tr.t, tr.qd[:, i], label=f"{name}_dot")
@@ -57,7 +61,15 @@ def plot_png(result: SimulationResult) -> bytes:
     axes[2].plot(tr.t, result.potential, label="potential U")
     axes[2].plot(tr.t, result.total, label="total E = T + U", color="black", linewidth=1.5)
     axes[2].set_ylabel("energy (J)")
-    axes[2].set_xlabel("t (s)")
+    axes[-1].set_xlabel("t (s)")
+    if constrained:
+        assert result.residuals is not None and result.multipliers is not None
+        for k, (name, _) in enumerate(result.constraints):
+            axes[3].plot(tr.t, result.multipliers[:, k], label=f"lambda_{k + 1} ({name})")
+            # a residual that is exactly 0 has no place on a log scale: drawn at the floor
+            axes[4].semilogy(tr.t, np.maximum(np.abs(result.residuals[:, k]), 1e-18), label=name)
+        axes[3].set_ylabel("multipliers (N or N m)")
+        axes[4].set_ylabel("|constraint residual|")
     if result.drift is not None and result.conservative:
         axes[2].set_title(f"relative energy drift {result.drift:.2g} (tolerance {result.tolerance:.2g})", fontsize=9)
     for ax in axes:

@@ -13,15 +13,27 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import sympy as sp
 
 from tutgen.engine.derivation import Derivation
-from tutgen.errors import DerivationTimeout, SimulationCheckError, SimulationError, SpecError, SpecErrors, UsageError
-from tutgen.model.simulation import DEFAULT_INTERVAL, DEFAULT_SAMPLES
+from tutgen.errors import (
+    DerivationTimeout,
+    Location,
+    SimulationCheckError,
+    SimulationError,
+    SpecError,
+    SpecErrors,
+    UsageError,
+)
+from tutgen.model.simulation import DEFAULT_INTERVAL, DEFAULT_SAMPLES, Simulation
 from tutgen.model.system import System
 from tutgen.sim.integrate import Trajectory, integrate
+
+if TYPE_CHECKING:
+    from tutgen.sim.model import NumericModel
 
 __all__ = [
     "DRIFT_FACTOR",
@@ -71,6 +83,22 @@ class SimulationResult:
     potential: np.ndarray
     conservative: bool
     drift: float | None  # max |E - E0| / scale, scale = max(|E0|, max T); None without samples
+    # a constrained spec's: its constraints (name, kind) in the multipliers' order, the residuals and the
+    # multipliers at the samples (samples x m), the Baumgarte rate, and the coordinates whose initial value
+    # (position constraints) or rate (every dependent one) the constraints gave
+    constraints: tuple[tuple[str, str], ...] = ()
+    residuals: np.ndarray | None = None
+    multipliers: np.ndarray | None = None
+    stabilisation: float = 0.0
+    solved_positions: tuple[str, ...] = ()
+    solved_rates: tuple[str, ...] = ()
+
+    @property
+    def max_residual(self) -> float | None:
+        """max |residual| over the samples and the constraints (None for an unconstrained run)."""
+        if self.residuals is None or not self.residuals.size:
+            return None
+        return float(np.max(np.abs(self.residuals)))
 
     @property
     def total(self) -> np.ndarray:
@@ -127,6 +155,9 @@ def _needed_parameters(derivation: Derivation, inputs: Mapping[str, sp.Expr]) ->
     else:
         pieces += [derivation.mass_matrix, derivation.coriolis_vector, derivation.gravity_vector]
     pieces += [derivation.generalized_forces, derivation.potential_energy, *inputs.values()]
+    if derivation.constraints is not None:
+        ck = derivation.constraints.kinematics
+        pieces += [ck.jacobian, ck.bias, *ck.functions]
     free: set[sp.Symbol] = set()
     for piece in pieces:
         if piece is not None:
@@ -155,6 +186,20 @@ def simulate_system(derivation: Derivation, settings: Settings, spec_file: str) 
 
     # every parameter the model evaluates needs a value or an input: name each one, where declared
     errors = []
+    if derivation.constraints is not None and sim is not None:
+        # A and b = A_dot q_dot hold for constraints that do not change in time: an input in one would
+        # make it move (its time derivatives are missing from b), so the motion would be wrong
+        used = set().union(*(sp.sympify(f).free_symbols for f in derivation.constraints.kinematics.functions))
+        for name in inputs:
+            if params[name].symbol in used:
+                errors.append(
+                    SpecError(
+                        sim.place(f"inputs.{name}"),
+                        f"input '{name}' enters the constraints, which would then change in time; the "
+                        "simulation takes constraints fixed in time only",
+                        f"give {name} a constant value (in `parameters` or --set {name}=VALUE)",
+                    )
+                )
     needed = _needed_parameters(derivation, inputs)
     for p in system.parameters:
         if p.symbol in needed and p.symbol not in values and p.name not in inputs:
@@ -168,12 +213,24 @@ def simulate_system(derivation: Derivation, settings: Settings, spec_file: str) 
             )
     q0_spec = dict(sim.q0) if sim is not None else {}
     qd0_spec = dict(sim.qd0) if sim is not None else {}
+    # a constrained spec: the coordinates the position constraints fix need no initial value (one given is
+    # where their solve starts), and the dependent rates follow from the constraints
+    guessed: set[str] = set()
+    dependent: set[str] = set()
+    if derivation.constraints is not None:
+        from tutgen.sim.constrained import position_unknowns
+
+        guessed = {coords[j] for j in position_unknowns(derivation)}
+        dependent = {coords[j] for j in derivation.constraints.kinematics.dependent}
+    given_rates: dict[str, float] = {}
     q0, qd0 = [], []
     for c in system.coordinates:
         if c.name in settings.q0:
             q0.append(_number(settings.q0[c.name], f"--q0 {c.name}=", names, values))
         elif c.name in q0_spec:
             q0.append(float(q0_spec[c.name].xreplace(values)))
+        elif c.name in guessed:
+            q0.append(0.0)
         else:
             errors.append(
                 SpecError(
@@ -187,6 +244,8 @@ def simulate_system(derivation: Derivation, settings: Settings, spec_file: str) 
             qd0.append(_number(settings.qd0[c.name], f"--qd0 {c.name}=", names, values))
         else:
             qd0.append(float(qd0_spec.get(c.name, sp.Integer(0)).xreplace(values)))
+        if c.name in dependent and (c.name in settings.qd0 or c.name in qd0_spec):
+            given_rates[c.name] = qd0[-1]
     if errors:
         raise SpecErrors(errors)
     t0, t1 = (float(x) for x in ((sim.t_start, sim.t_end) if sim is not None else DEFAULT_INTERVAL))
@@ -198,7 +257,14 @@ def simulate_system(derivation: Derivation, settings: Settings, spec_file: str) 
 
     float_values = {p.name: float(values[p.symbol]) for p in system.parameters if p.symbol in values}
     stage("building the numeric model")
-    model = numeric_model(derivation, float_values, inputs)
+    alpha = 0.0
+    if derivation.constraints is not None:
+        from tutgen.sim.constrained import baumgarte_rate
+
+        alpha = baumgarte_rate(t0, t1)
+    model = numeric_model(derivation, float_values, inputs, alpha)
+    if derivation.constraints is not None:
+        q0, qd0 = _consistent(derivation, model, t0, q0, qd0, given_rates, where, sim)
     stage("integration", f"t from {t0:g} to {t1:g} s")
     from tutgen.limits import remaining
 
@@ -247,7 +313,78 @@ def simulate_system(derivation: Derivation, settings: Settings, spec_file: str) 
         potential=potential,
         conservative=model.conservative,
         drift=drift,
+        **_constrained_fields(derivation, model, trajectory, guessed, dependent),
     )
+
+
+def _consistent(
+    derivation: Derivation,
+    model: NumericModel,
+    t0: float,
+    q0: list[float],
+    qd0: list[float],
+    given_rates: Mapping[str, float],
+    where: Location,
+    sim: Simulation | None,
+) -> tuple[list[float], list[float]]:
+    """A constrained spec's initial state on its constraints (tutgen/sim/constrained.py); an error at the
+    `simulate` section when the position constraints have no root, or a dependent rate given disagrees."""
+    from tutgen.sim.constrained import consistent_start
+
+    coords = [c.name for c in derivation.system.coordinates]
+    ck = derivation.constraints.kinematics if derivation.constraints is not None else None
+    assert ck is not None
+    independent = ", ".join(f"{coords[j]} = {q0[j]:.6g}" for j in ck.independent)
+    start = consistent_start(derivation, model, t0, np.array(q0), np.array(qd0))
+    if start is None:
+        raise SpecErrors(
+            [
+                SpecError(
+                    where,
+                    f"the constraints hold at no configuration with {independent}: the position constraints have "
+                    "no root from the start given",
+                    "choose other initial values of the independent coordinates, or give the dependent ones a "
+                    "starting guess in `simulate.q0` (--q0 NAME=VALUE) near the assembly meant",
+                )
+            ]
+        )
+    q, qd = start
+    errors = []
+    for name, value in given_rates.items():
+        j = coords.index(name)
+        if abs(value - qd[j]) > 1e-9 * (1 + abs(qd[j])):
+            place = sim.place(f"qd0.{name}") if sim is not None else where
+            errors.append(
+                SpecError(
+                    place,
+                    f"the initial rate of the dependent coordinate '{name}' is {value:.6g}, and the constraints "
+                    f"give {qd[j]:.6g} (q_dot_d = B q_dot_i)",
+                    f"leave {name} out of `simulate.qd0` (and --qd0): the constraints give it",
+                )
+            )
+    if errors:
+        raise SpecErrors(errors)
+    return [float(v) for v in q], [float(v) for v in qd]
+
+
+def _constrained_fields(
+    derivation: Derivation, model: NumericModel, trajectory: Trajectory, guessed: set[str], dependent: set[str]
+) -> dict[str, object]:
+    """The constrained run's fields of :class:`SimulationResult` (none for an unconstrained one)."""
+    if derivation.constraints is None:
+        return {}
+    from tutgen.sim.constrained import residuals_and_multipliers
+
+    residuals, multipliers = residuals_and_multipliers(model, trajectory.t, trajectory.q, trajectory.qd)
+    coords = [c.name for c in derivation.system.coordinates]
+    return {
+        "constraints": model.constraints,
+        "residuals": residuals,
+        "multipliers": multipliers,
+        "stabilisation": model.stabilisation,
+        "solved_positions": tuple(c for c in coords if c in guessed),
+        "solved_rates": tuple(c for c in coords if c in dependent),
+    }
 
 
 #: The files of a run, by kind: the suffix after the spec's stem.
@@ -278,14 +415,6 @@ def simulate_spec(
     with deadline(settings.timeout):
         charge("loading the specs", spec.name)
         system = load_system(spec)
-        if system.is_constrained:  # H, C, G are the unconstrained coordinates': they would ignore the constraints
-            from tutgen.errors import DerivationError
-
-            raise DerivationError(
-                "`tutgen simulate` does not handle `constraints` or loop-closing joints yet: the code would be that of "
-                "the unconstrained coordinates; use `tutgen solve` for the constrained equations",
-                system.origin,
-            )
         charge("derivation")
         derivation = derive(system, "lagrange")
         result = simulate_system(derivation, settings, spec.name)

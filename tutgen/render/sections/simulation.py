@@ -68,12 +68,19 @@ def simulation(c: SolutionContext) -> dict[str, Any] | None:
     if run is None or not d.has_step(StepKind.SIMULATION):
         return None
     coords = {q.name: q for q in s.coordinates}
+    solved = "solved for $\\ddot q = H^{-1}(Q - C - G)$"
+    if s.is_constrained:  # tutgen/sim/constrained.py: the multipliers' system, Baumgarte-stabilised
+        solved = (
+            "$H\\ddot q - A^{\\mathsf T}\\lambda = Q - C - G$ with $A\\ddot q + \\dot A\\dot q = 0$, "
+            "solved together for $\\ddot q$ and $\\lambda$ (Baumgarte-stabilised)"
+        )
     sec = section(
         "Numerical simulation",
-        f"The equations of motion, solved for $\\ddot q = H^{{-1}}(Q - C - G)$, are integrated numerically "
+        f"The equations of motion, {solved}, are integrated numerically "
         f"from $t = {number_tex(run.t_start)}$ to $t = {number_tex(run.t_end)}\\,\\mathrm{{s}}$ "
         f"({run.method}, relative tolerance ${number_tex(run.rtol)}$, {run.steps} steps), "
-        "with the data given.",
+        "with the data given."
+        + (" The dependent coordinates and rates start where the constraints put them." if s.is_constrained else ""),
     )
     start: list[Any] = [text("Initial state: ")]
     for i, (name, q0, qd0) in enumerate(run.initial):

@@ -72,6 +72,12 @@ def _without_initial_value(ctx: Context) -> tuple[str, str] | None:
             "add e.g. `simulate: {t: [0, 10], q0: {" + ", ".join(f"{c}: 0.5" for c in ctx.coords) + "}}`",
         )
     missing = [c for c in ctx.coords if c not in sim.q0]
+    if ctx.doc.independent_coordinates and (
+        ctx.doc.constraints or any(j.closes_loop for j in (ctx.doc.joints or {}).values())
+    ):
+        # a constrained spec: the run solves the dependent coordinates from the constraints (a coordinate
+        # only velocity constraints tie still needs a value: the run says so, at the `simulate` section)
+        missing = [c for c in missing if c in ctx.doc.independent_coordinates]
     if missing:
         return (
             f"`simulation` needs every coordinate's initial value in `simulate.q0`; missing: {', '.join(missing)}",
