@@ -73,7 +73,8 @@ class ConstraintKinematics:
 
 def _free_values(system: System, rng: random.Random) -> dict[sp.Symbol, mpmath.mpf]:
     return {
-        p.symbol: mpmath.mpf(p.value) if p.value is not None else mpmath.mpf(rng.uniform(0.5, 2))
+        # a value may be irrational (30 deg is pi/6): evaluated, not converted
+        p.symbol: mpmath.mpf(sp.N(p.value, 30)) if p.value is not None else mpmath.mpf(rng.uniform(0.5, 2))
         for p in system.parameters
     }
 
