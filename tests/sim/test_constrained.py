@@ -191,7 +191,6 @@ def test_worked_solution_simulates_the_constrained_motion() -> None:
     from tutgen.spec.validate import load_system_text
 
     text = (ROOT / DISC).read_text(encoding="utf-8")
-    # alpha in radians: a value such as 30 deg (pi/6) trips the engine's consistent-state draw (mpmath.mpf(pi/6))
     for name, value in (("m", "2 kg"), ("R", "0.3 m"), ("alpha", "0.5"), ("g", "9.81 m/s^2")):
         text = text.replace(f"  {name}: {{", f"  {name}: {{value: {value}, ", 1)
     text += "simulate: {t: [0, 1], q0: {phi: 2, x: 0}, samples: 11}\nask: [equations_of_motion, simulation]\n"
@@ -203,6 +202,10 @@ def test_worked_solution_simulates_the_constrained_motion() -> None:
     md = render_markdown(derivation)
     assert "solved together for $\\ddot q$ and $\\lambda$ (Baumgarte-stabilised)" in md
     assert "The dependent coordinates and rates start where the constraints put them." in md
+    # the simulation comes after the constrained equations it integrates
+    kinds = [str(step.kind) for step in derivation.steps]
+    assert kinds[-1] == "simulation" and kinds.index("reduced_equations") < kinds.index("simulation")
+    assert md.index("Constraints") < md.index("Numerical simulation")
 
 
 def test_ask_simulation_needs_only_the_independent_coordinates_initial_values() -> None:

@@ -67,7 +67,9 @@ class StepKind(StrEnum):
 
 #: teaching order: every step comes after the steps it depends on (the serial arm's equations of
 #: motion, read from the matrix form below them, are the one exception)
-ORDER: tuple[StepKind, ...] = tuple(StepKind)
+#: teaching order: the enum's, except that the simulation comes last (it integrates the equations the
+#: other steps derive, the constrained ones included)
+ORDER: tuple[StepKind, ...] = (*(k for k in StepKind if k is not StepKind.SIMULATION), StepKind.SIMULATION)
 
 _WHY = {
     StepKind.INERTIA: "Each body's mass, centre of mass and inertia tensor, which the kinetic energy needs.",
