@@ -314,9 +314,9 @@ def _verdict(
     if verdict == "undetermined" and minors and inside:
         signs = [sign_condition(sp.factor(sp.together(m.xreplace(inside)))) for m in minors]
         if all(x is sp.true for x in signs):
-            return "stable", "K_r is positive definite wherever this steady motion exists (strictly)", (), None
+            return "stable", "the reduced K is positive definite wherever this steady motion exists (strictly)", (), None
         if signs[0] is sp.false or any(x is sp.false for x in signs[::2]):
-            return "unstable", "K_r has a negative direction wherever this steady motion exists", (), None
+            return "unstable", "the reduced K has a negative direction wherever this steady motion exists", (), None
     if verdict == "undetermined" and minors:
         where = tuple(c for c in (sign_condition(m) for m in minors) if c is not sp.true)
         if where and sp.false not in where:
