@@ -45,6 +45,9 @@ from tutgen.model.system import Coordinate
 
 __all__ = ["SteadyMotion", "SteadyState", "cyclic_coordinates", "steady_motion"]
 
+#: a symbolic reduced model longer than this (sympy's operation count) is not judged by its sign
+MAX_OPS = 400
+
 #: a real part this small (relative to the largest eigenvalue) counts as zero
 ZERO = 1e-9
 
@@ -207,7 +210,9 @@ def _is_positive(expr: sp.Expr, rates: list[sp.Expr]) -> bool:
 
 def _shortest(v: sp.Expr) -> sp.Expr:
     """The shorter of the factored and the tidied form (Routh's reduction leaves a fraction)."""
-    factored = sp.factor(sp.cancel(sp.simplify(v)))
+    # no simplify: at an acos root the entries are algebraic (sin(acos x) = sqrt(1 - x^2)), and simplify
+    # spends minutes on a top's; cancel and factor are exact and quick
+    factored = sp.factor(sp.cancel(sp.together(sp.expand(v))))
     tidied = tidy(factored)
     return factored if sp.count_ops(factored) < sp.count_ops(tidied) else tidied
 
@@ -227,24 +232,36 @@ def _reduced(
     kept (its columns dropped), a free one's momentum kept (Routh's reduction, see the module)."""
     s = d.system
     assert d.equations_of_motion is not None
+    if not others:
+        empty = sp.ImmutableMatrix.zeros(0, 0)
+        return empty, empty, empty
     rows = [s.coordinates.index(c) for c in others]
     e = sp.Matrix([d.equations_of_motion[i] for i in rows])
 
-    def at(m: sp.Matrix) -> sp.Matrix:
-        return m.xreplace(point)
-
+    # formed at a general value of the others (trigonometric rational functions, quick to cancel), and
+    # only then at the steady value, which may be an acos of a long argument
     qs = [c.q for c in others]
+    general = {k: v for k, v in point.items() if k not in qs}
+    steady = {k: v for k, v in point.items() if k in qs}
+    motion = {x for c in s.coordinates for x in (c.qd, c.qdd)}
+    rates = {k: v for k, v in general.items() if k in motion}
+    e = e.xreplace({k: v for k, v in general.items() if k not in motion})
+
+    def at(m: sp.Matrix) -> sp.Matrix:
+        return m.xreplace(rates)
+
     m_ss = at(e.jacobian([c.qdd for c in others]))
     d_ss = at(e.jacobian([c.qd for c in others]))
     k_ss = at(e.jacobian(qs))
     if free:
         m_sf = at(e.jacobian([c.qdd for c in free]))
         d_sf = at(e.jacobian([c.qd for c in free]))
-        p = _momenta(d, free)
+        p = _momenta(d, free).xreplace({k: v for k, v in general.items() if k not in rates})
         a_fs = at(p.jacobian([c.qd for c in others]))
         a_ff = at(p.jacobian([c.qd for c in free]))
         p_fs = at(p.jacobian(qs))
-        if sp.simplify(a_ff.det()) == 0:
+        det = sp.cancel(sp.expand(a_ff.det()))
+        if _short(det.xreplace(steady)) == 0:
             raise _Singular
         x = a_ff.inv()
         m_ss = m_ss - m_sf * x * a_fs
@@ -252,9 +269,14 @@ def _reduced(
         k_ss = k_ss - d_sf * x * p_fs
 
     def clean(m: sp.Matrix) -> sp.ImmutableMatrix:
-        return sp.ImmutableMatrix(m.applyfunc(_shortest))
+        return sp.ImmutableMatrix(m.applyfunc(lambda v: _short(sp.factor(sp.cancel(v)).xreplace(steady))))
 
     return clean(m_ss), clean(d_ss), clean(k_ss)
+
+
+def _short(v: sp.Expr) -> sp.Expr:
+    """:func:`_shortest` where the expression is short enough to simplify quickly; else as it is."""
+    return _shortest(v) if sp.count_ops(v) <= 200 else v
 
 
 def _eigen_verdict(values: list[complex], damping: sp.Matrix, stiffness: sp.Matrix) -> tuple[str, str]:
@@ -308,13 +330,21 @@ def _verdict(
         )
         verdict, reason = _eigen_verdict(kept, numeric[1], numeric[2])
         return verdict, reason, (), tuple(kept)
+    if sum(sp.count_ops(x) for x in (*damping, *stiffness)) > MAX_OPS:
+        return (
+            "undetermined",
+            "the reduced K is too long to judge by its sign: give the parameters values for the eigenvalues",
+            (),
+            None,
+        )
     verdict, reason, minors = stiffness_verdict(damping, stiffness)
     where: tuple[sp.Basic, ...] = ()
     inside = _inside(exists) if exists else None
     if verdict == "undetermined" and minors and inside:
         signs = [sign_condition(sp.factor(sp.together(m.xreplace(inside)))) for m in minors]
         if all(x is sp.true for x in signs):
-            return "stable", "the reduced K is positive definite wherever this steady motion exists (strictly)", (), None
+            why = "the reduced K is positive definite wherever this steady motion exists (strictly)"
+            return "stable", why, (), None
         if signs[0] is sp.false or any(x is sp.false for x in signs[::2]):
             return "unstable", "the reduced K has a negative direction wherever this steady motion exists", (), None
     if verdict == "undetermined" and minors:
@@ -346,7 +376,9 @@ def steady_motion(d: Derivation) -> SteadyMotion:
     free_others = tuple(c.name for c in others if c not in present)
     remark = None
     if present:
-        solutions, method = roots(d, residual, present)
+        # sin(2 theta) back to 2 sin(theta) cos(theta): each factor then in cos or sin alone (acos roots,
+        # every family), not sympy's half-angle atan forms
+        solutions, method = roots(d, sp.ImmutableMatrix(residual.applyfunc(sp.expand_trig)), present)
         if not solutions:
             remark = "no steady state was found at these rates"
     elif any(e != 0 for e in residual):
@@ -396,16 +428,16 @@ def _state(
     for c, _ in held:
         i = s.coordinates.index(c)
         row = d.equations_of_motion[i] + forces[i]  # (H q_ddot + C + G)_c
-        required.append((c.name, tidy(sp.simplify(row.xreplace(point)))))
+        required.append((c.name, _shortest(row.xreplace(point))))
         unknown = sorted((forces[i].free_symbols & set(zeroed)) - set(d.values), key=default_sort_key)
         if len(unknown) == 1:
             u = unknown[0]
             balance = (d.equations_of_motion[i]).xreplace(point).xreplace({k: v for k, v in zeroed.items() if k != u})
             solved = sp.solve(balance, u)
             if len(solved) == 1:
-                inputs.append((u, tidy(sp.simplify(solved[0]))))
+                inputs.append((u, _shortest(solved[0])))
     p = _momenta(d, [c for c, _ in held]) if held else sp.Matrix([])
-    momenta = tuple((c.name, tidy(sp.simplify(p[k].xreplace(point)))) for k, (c, _) in enumerate(held))
+    momenta = tuple((c.name, _shortest(p[k].xreplace(point))) for k, (c, _) in enumerate(held))
     point_inputs = dict(point)
     point_inputs.update(zeroed)
     decided = [d.numeric(x) for x in exists]
