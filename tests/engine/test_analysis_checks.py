@@ -128,9 +128,10 @@ def _specs() -> list[Any]:
         reason = _why_not(data)
         asked = set(data.get("ask") or []) & {"equilibria", "linearization"} if isinstance(data, dict) else set()
         marks: Any = ()
-        if reason is None and not asked or path.stem in HEAVY_SPECS or path.stem == "puma560-numeric":
+        if (reason is None and not asked) or path.stem in HEAVY_SPECS or path.stem == "puma560-numeric":
             marks = pytest.mark.slow
-        out.append(pytest.param(path, reason, id=path.relative_to(ROOT / "specs").with_suffix("").as_posix(), marks=marks))
+        name = path.relative_to(ROOT / "specs").with_suffix("").as_posix()
+        out.append(pytest.param(path, reason, id=name, marks=marks))
     return out
 
 

@@ -214,7 +214,27 @@ def _shortest(v: sp.Expr) -> sp.Expr:
     # spends minutes on a top's; cancel and factor are exact and quick
     factored = sp.factor(sp.cancel(sp.together(sp.expand(v))))
     tidied = tidy(factored)
-    return factored if sp.count_ops(factored) < sp.count_ops(tidied) else tidied
+    return _signs(factored) if sp.count_ops(factored) < sp.count_ops(tidied) else tidied
+
+
+def _negative_heavy(f: sp.Expr) -> bool:
+    terms = sp.Add.make_args(f)
+    return isinstance(f, sp.Add) and sum(t.could_extract_minus_sign() for t in terms) * 2 >= len(terms)
+
+
+def _signs(v: sp.Expr) -> sp.Expr:
+    """A fraction's factors with mostly negative terms turned over in pairs, one above and one below the
+    line, so that m (g - R w^2) / (2 m g^2 - M R^2 w^4) reads m (R w^2 - g) / (M R^2 w^4 - 2 m g^2)."""
+    num, den = sp.fraction(v)
+    if den == 1:
+        return v
+    top, bottom = list(sp.Mul.make_args(num)), list(sp.Mul.make_args(den))
+    below = [i for i, f in enumerate(bottom) if _negative_heavy(f)]
+    above = [i for i, f in enumerate(top) if _negative_heavy(f)]
+    for i, j in zip(below, above, strict=False):
+        bottom[i], top[j] = sp.expand(-bottom[i]), sp.expand(-top[j])
+    out = sp.Mul(sp.Mul(*top), sp.Pow(sp.Mul(*bottom), -1))
+    return out if sp.expand(out - v) == 0 or sp.cancel(out - v) == 0 else v
 
 
 class _Singular(Exception):

@@ -16,6 +16,8 @@ from tutgen.render.wording import engine_parts
 
 __all__ = ["steady_motion"]
 
+_REL = {"<=": "\\leq", ">=": "\\geq", "<": "<", ">": ">"}
+
 
 def _names(c: SolutionContext, names: tuple[str, ...] | list[str]) -> str:
     coords = {q.name: q for q in c.s.coordinates}
@@ -28,7 +30,9 @@ def _rates(c: SolutionContext, st: SteadyMotion) -> str:
     for name, rate in st.rates:
         qd = c.tex(coords[name].qd)
         value = c.tex(c.num(rate))
-        shown.append(qd if value == qd else f"{qd} = {value}")
+        unit = {"angle": "\\ \\mathrm{rad/s}", "length": "\\ \\mathrm{m/s}"}.get(coords[name].dimension or "", "")
+        unit = unit if c.num(rate).is_number else ""
+        shown.append(qd if value == qd else f"{qd} = {value}{unit}")
     return ",\\ ".join(shown)
 
 
@@ -61,7 +65,9 @@ def _verdict(c: SolutionContext, state: SteadyState) -> list[Part]:
     return [strong(label), text(": "), *engine_parts(f"{state.reason}.", c.tex)]
 
 
-def _state(c: SolutionContext, st: SteadyMotion, i: int, state: SteadyState) -> list[dict[str, Any]]:
+def _state(c: SolutionContext, st: SteadyMotion, state: SteadyState, shared: bool) -> list[dict[str, Any]]:
+    """One steady motion: its values, where it exists, what it needs (unless ``shared``: said once for
+    all), its conserved momentum and its stability."""
     tex, num = c.tex, c.num
     coords = {q.name: q for q in c.s.coordinates}
     blocks: list[dict[str, Any]] = []
@@ -71,23 +77,40 @@ def _state(c: SolutionContext, st: SteadyMotion, i: int, state: SteadyState) -> 
         blocks.append(display(at))
     if state.exists_where:
         shown = ",\\quad ".join(tex(x) for x in state.exists_where)
-        blocks.append(
-            para(
-                text("It exists only where "),
-                math(shown),
-                text(" (the argument of an inverse cosine or sine lies in [-1, 1])."),
-            ),
-        )
+        trig = "a cosine" if any(v.has(sp.acos) for _, v in state.at) else "a sine"
+        parts: list[Part] = [text("It exists only where "), math(shown), text(f", as {trig} lies in [−1, 1]")]
+        if state.exists is not None:
+            here = ",\\quad ".join(f"{tex(num(x.lhs))} {_REL[x.rel_op]} {tex(num(x.rhs))}" for x in state.exists_where)
+            parts += [text("; here "), math(here)]
+        blocks.append(para(*parts, text(".")))
         if state.exists is False:
             blocks.append(
                 para(strong("At the given values it does not exist"), text(": there is no such steady motion."))
             )
             return blocks
+    if not shared:
+        blocks += _needs(c, st, state)
+    blocks += _conserved(c, st, state)
+    return blocks + _stability(c, state)
+
+
+def _needs(c: SolutionContext, st: SteadyMotion, state: SteadyState) -> list[dict[str, Any]]:
+    """The generalized force each held coordinate needs, and the input that gives it."""
+    tex, num = c.tex, c.num
+    coords = {q.name: q for q in c.s.coordinates}
+    blocks: list[dict[str, Any]] = []
     for name, value in state.required:
         q = coords[name]
         blocks.append(display(f"Q_{{{q.latex}}} = (H\\ddot q + C + G)_{{{q.latex}}} = {tex(num(value))}"))
     for u, value in state.inputs:
         blocks.append(para(text("so the drive gives "), math(f"{tex(u)} = {tex(num(value))}"), text(".")))
+    return blocks
+
+
+def _conserved(c: SolutionContext, st: SteadyMotion, state: SteadyState) -> list[dict[str, Any]]:
+    tex, num = c.tex, c.num
+    coords = {q.name: q for q in c.s.coordinates}
+    blocks: list[dict[str, Any]] = []
     for name, value in state.momenta:
         q = coords[name]
         if name in st.free:
@@ -101,6 +124,12 @@ def _state(c: SolutionContext, st: SteadyMotion, i: int, state: SteadyState) -> 
                     text("."),
                 )
             )
+    return blocks
+
+
+def _stability(c: SolutionContext, state: SteadyState) -> list[dict[str, Any]]:
+    tex, num = c.tex, c.num
+    blocks: list[dict[str, Any]] = []
     if state.verdict == "neutral":
         blocks.append(para(*_verdict(c, state)))
         return blocks
@@ -112,16 +141,28 @@ def _state(c: SolutionContext, st: SteadyMotion, i: int, state: SteadyState) -> 
         blocks.append(display(",\\quad ".join(lines)))
     if state.eigenvalues is not None:
         shown = ",\\ ".join(_complex(z) for z in state.eigenvalues)
+        oscillating = [z for z in state.eigenvalues if z.real == 0 and z.imag > 0]
+        extra = (
+            [
+                text(" (small oscillations at "),
+                math(", ".join(f"{z.imag:.4g}" for z in oscillating) + "\\ \\mathrm{rad/s}"),
+                text(")"),
+            ]
+            if oscillating
+            else []
+        )
         blocks.append(
             para(
                 text("The eigenvalues of the reduced model: "),
                 math(f"\\lambda = {shown}\\ \\mathrm{{s^{{-1}}}}"),
+                *extra,
                 text("."),
             )
         )
     blocks.append(para(*_verdict(c, state)))
     if state.stable_where:
-        blocks.append(para(text("It is stable where"), math(",\\quad ".join(tex(num(x)) for x in state.stable_where))))
+        where = ",\\quad ".join(tex(num(x)) for x in state.stable_where)
+        blocks.append(para(text("It is stable where "), math(where), text(".")))
     return blocks
 
 
@@ -176,10 +217,14 @@ def steady_motion(c: SolutionContext) -> dict[str, Any] | None:
         return sec
     if st.others:
         blocks.append(para(*_held(c, st)))
+    existing = [x for x in st.states if x.exists is not False]
+    shared = len({(x.required, x.inputs) for x in existing}) == 1 and len(st.states) > 1
+    if shared:
+        blocks += [para(text("At every steady motion below, the held coordinates need:")), *_needs(c, st, existing[0])]
     for i, state in enumerate(st.states, start=1):
         if len(st.states) > 1:
             blocks.append(subheading(f"Steady motion {i}"))
-        blocks += _state(c, st, i, state)
+        blocks += _state(c, st, state, shared)
     angles = [n for n in st.others if coords[n].dimension == "angle" and n not in st.free_others]
     if angles and st.states:
         blocks.append(para(text("Each angle stands for its family, plus any multiple of "), math("2\\pi"), text(".")))
