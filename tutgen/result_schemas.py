@@ -264,6 +264,44 @@ MOMENTUM = {
     },
     "required": ["bodies", "linear", "angular_origin", "angular_origin_rate", "support_moment", "conserved"],
 }
+STEADY_MOTION = {
+    "type": "object",
+    "description": "ask: [steady_motion] (docs/json-output.md#steady-motion).",
+    "properties": {
+        "cyclic": {"type": "array", "items": {"type": "string"}},
+        "rates": AT,
+        "free": {"type": "array", "items": {"type": "string"}},
+        "others": {"type": "array", "items": {"type": "string"}},
+        "free_others": {"type": "array", "items": {"type": "string"}},
+        "held": {"enum": ["rate", "momentum", "mixed"]},
+        "residual": VECTOR,
+        "method": {"enum": ["symbolic", "numeric", "none"]},
+        "remark": {"type": "string"},
+        "states": {
+            "type": "array",
+            "items": {
+                "type": "object",
+                "properties": {
+                    "at": AT,
+                    "exists": {"type": ["boolean", "null"]},
+                    "exists_where": {"type": "array", "items": EXPR},
+                    "required": AT,
+                    "inputs": AT,
+                    "momenta": AT,
+                    "mass_matrix": MATRIX,
+                    "damping_matrix": MATRIX,
+                    "stiffness_matrix": MATRIX,
+                    "stability": {"enum": [*STABILITY["enum"], "neutral", "none"]},
+                    "reason": {"type": "string"},
+                    "stable_where": {"type": "array", "items": EXPR},
+                    "eigenvalues": {"type": "array", "items": {"type": "array", "items": {"type": "number"}}},
+                },
+                "required": ["at", "exists", "required", "mass_matrix", "stiffness_matrix", "stability", "reason"],
+            },
+        },
+    },
+    "required": ["cyclic", "rates", "free", "others", "held", "residual", "method", "states"],
+}
 RESULTS = {
     "type": "object",
     "properties": {
@@ -295,6 +333,7 @@ RESULTS = {
         "equilibria": EQUILIBRIA,
         "linearization": {"type": "array", "items": LINEAR_MODEL},
         "momentum": MOMENTUM,
+        "steady_motion": STEADY_MOTION,
     },
 }
 FIGURE = {

@@ -111,7 +111,12 @@ def derive(system: System, method: str | None = None) -> Derivation:
         d = _serial_route(system, methods, inertia, principal)
     else:
         d = _general_route(system, methods, inertia, principal, {kind for kind, _ in plan})
-    if {kind for kind, _ in plan} & {StepKind.EQUILIBRIA, StepKind.LINEARIZATION, StepKind.MOMENTUM}:
+    if {kind for kind, _ in plan} & {
+        StepKind.EQUILIBRIA,
+        StepKind.LINEARIZATION,
+        StepKind.MOMENTUM,
+        StepKind.STEADY_MOTION,
+    }:
         d = _analysis(d, {kind for kind, _ in plan})
     if system.is_constrained and d.mass_matrix is not None:
         d = _constrained(d)
@@ -125,15 +130,25 @@ def _analysis(d: Derivation, kinds: set[StepKind]) -> Derivation:
     (:mod:`~tutgen.engine.analysis`), with the finite-difference check of each linear model."""
     from tutgen.engine.analysis import analyse
 
-    a = analyse(d, StepKind.EQUILIBRIA in kinds, StepKind.LINEARIZATION in kinds, StepKind.MOMENTUM in kinds)
+    a = analyse(
+        d,
+        StepKind.EQUILIBRIA in kinds,
+        StepKind.LINEARIZATION in kinds,
+        StepKind.MOMENTUM in kinds,
+        StepKind.STEADY_MOTION in kinds,
+    )
     models = {id(m): m for m in (*a.classified, *a.linear)}.values()
     checks = tuple(m.check for m in models if m.check is not None)
+    if a.steady is not None:
+        checks = (*checks, a.steady.check)
     for check in checks:
         if not check.passed:
             raise DerivationError(
                 f"internal check failed: {check.detail}; please report this spec as a tutgen bug", d.system.origin
             )
-    return dataclasses.replace(d, analysis=a, checks=(*d.checks, *checks[:1]))
+    linear = [ch for ch in checks if ch.name != "steady_motion_satisfies_equations"][:1]
+    steady = [ch for ch in checks if ch.name == "steady_motion_satisfies_equations"]
+    return dataclasses.replace(d, analysis=a, checks=(*d.checks, *linear, *steady))
 
 
 def derive_with_deadline(

@@ -59,6 +59,7 @@ class StepKind(StrEnum):
     SIMULATION = "simulation"  # the equations of motion integrated numerically: plots, energy drift
     EQUILIBRIA = "equilibria"  # the rest configurations G(q) = Q(q, 0), each classified (engine/analysis)
     LINEARIZATION = "linearization"  # M dq_ddot + D dq_dot + K dq = B du about an equilibrium, its modes
+    STEADY_MOTION = "steady_motion"  # relative equilibria at constant rates of the cyclic coordinates
     MOMENTUM = "momentum"  # p, H_G, H_O per body and in total, dH_O/dt, conserved quantities
     CONSTRAINTS = "constraints"  # the constraints, their Jacobian A and the velocity analysis q_dot = T q_dot_i
     LAGRANGE_MULTIPLIERS = "lagrange_multipliers"  # H q_ddot + C + G = Q + A^T lambda, lambda solved
@@ -92,6 +93,8 @@ _WHY = {
     StepKind.EQUILIBRIA: "At rest q_dot = q_ddot = 0, so the equations of motion reduce to G(q) = Q(q, 0).",
     StepKind.LINEARIZATION: "Small motions about an equilibrium obey the first-order expansion of the equations "
     "of motion: M dq_ddot + D dq_dot + K dq = B du.",
+    StepKind.STEADY_MOTION: "With the cyclic coordinates turning at constant rates and the others at rest, "
+    "the equations of motion of the others reduce to equations in their values alone.",
     StepKind.MOMENTUM: "Each body's momentum and angular momentum from its velocities and inertia; the rate of "
     "change of the total angular momentum about O is the moment of the external forces about O.",
     StepKind.CONSTRAINTS: "The constraints tie the coordinates: their Jacobian A gives A q_dot = 0, and the "
@@ -118,6 +121,7 @@ _QUANTITY = {
     StepKind.SIMULATION: "q(t), q_dot(t) and the energy",
     StepKind.EQUILIBRIA: "equilibria",
     StepKind.LINEARIZATION: "linear model",
+    StepKind.STEADY_MOTION: "steady motion",
     StepKind.MOMENTUM: "momentum",
     StepKind.CONSTRAINTS: "constraint Jacobian and velocity analysis",
     StepKind.LAGRANGE_MULTIPLIERS: "equations with Lagrange's multipliers",
@@ -193,6 +197,7 @@ def _depends(system: System, methods: tuple[Method, ...], large: bool) -> dict[S
         K.EQUILIBRIA: (K.MATRIX_FORM,),
         # about the spec's equilibrium, or about each one found
         K.LINEARIZATION: (K.MATRIX_FORM,) if has_about else (K.EQUILIBRIA,),
+        K.STEADY_MOTION: (K.MATRIX_FORM,),
         K.MOMENTUM: (K.LAGRANGIAN,),
         K.CONSTRAINTS: (),
         K.LAGRANGE_MULTIPLIERS: (K.CONSTRAINTS, K.MATRIX_FORM),
@@ -219,6 +224,7 @@ _ASKED = {
     Ask.EQUILIBRIA: (StepKind.EQUILIBRIA,),
     Ask.LINEARIZATION: (StepKind.LINEARIZATION,),
     Ask.MOMENTUM: (StepKind.MOMENTUM,),
+    Ask.STEADY_MOTION: (StepKind.STEADY_MOTION,),
 }
 
 
@@ -408,7 +414,7 @@ def _equations(d: Derivation, kind: StepKind, large: bool) -> tuple[Equation, ..
             Equation(sp.Derivative(H_ENTRY[i + 1, j + 1], q[k]), v)
             for (i, j, k), v in mass_matrix_derivatives(d).items()
         )
-    if kind in (K.EQUILIBRIA, K.LINEARIZATION, K.MOMENTUM):
+    if kind in (K.EQUILIBRIA, K.LINEARIZATION, K.MOMENTUM, K.STEADY_MOTION):
         return analysis_equations(d, kind)
     if kind in (K.CONSTRAINTS, K.LAGRANGE_MULTIPLIERS, K.REDUCED_EQUATIONS):
         return constraint_equations(d, kind)
@@ -441,6 +447,16 @@ def analysis_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
         out += [Equation(_name("p"), mo.linear), Equation(_name("H_O"), mo.angular_origin)]
         out += [Equation(_name("dH_O_dt"), mo.angular_rate), Equation(_name("M_O_supports"), mo.support_moment)]
         out += [Equation(_name(c.name), c.value) for c in mo.conserved]
+        return tuple(out)
+    if kind is StepKind.STEADY_MOTION:
+        if a.steady is None:
+            return ()
+        st = a.steady
+        out = [Equation(_name("steady_residual"), st.residual)]
+        for i, state in enumerate(st.states, start=1):
+            out.append(Equation(_name(f"q_s_{i}"), sp.ImmutableMatrix([v for _, v in state.at])))
+            out += [Equation(_name(f"Q_{name}_{i}"), v) for name, v in state.required]
+            out.append(Equation(_name(f"K_r_{i}"), state.stiffness))
         return tuple(out)
     if kind is StepKind.EQUILIBRIA:
         if a.equilibria is None:

@@ -204,12 +204,13 @@ class Ask(StrEnum):
     EQUILIBRIA = "equilibria"
     LINEARIZATION = "linearization"
     MOMENTUM = "momentum"
+    STEADY_MOTION = "steady_motion"  # relative equilibria at constant rates of the cyclic coordinates
 
 
 #: the items of ``ask`` that a spec must name: the default (everything that applies) is the equations
 #: of motion and what leads to them, not the analysis that follows them (tutgen.engine.analysis) nor a
 #: numerical simulation (tutgen.sim)
-OPT_IN_ASK = frozenset({Ask.SIMULATION, Ask.EQUILIBRIA, Ask.LINEARIZATION, Ask.MOMENTUM})
+OPT_IN_ASK = frozenset({Ask.SIMULATION, Ask.EQUILIBRIA, Ask.LINEARIZATION, Ask.MOMENTUM, Ask.STEADY_MOTION})
 
 
 class Method(StrEnum):

@@ -12,7 +12,7 @@ from typing import Any
 
 import sympy as sp
 
-from tutgen.engine.analysis import LinearModel
+from tutgen.engine.analysis import LinearModel, SteadyMotion
 from tutgen.engine.analysis.equilibria import existence
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.ne_types import PlanarNewtonEuler
@@ -410,6 +410,8 @@ def analysis_results(d: Derivation) -> dict[str, Any]:
         }
     if a.linear:
         out["linearization"] = [_linear(m, num) for m in a.linear]
+    if a.steady is not None:
+        out["steady_motion"] = _steady(a.steady, num)
     if a.momentum is not None:
         mo = a.momentum
         out["momentum"] = {
@@ -431,3 +433,39 @@ def analysis_results(d: Derivation) -> dict[str, Any]:
             "conserved": [{"name": q.name, "value": value(num(q.value)), "why": q.why} for q in mo.conserved],
         }
     return out
+
+
+def _steady(st: SteadyMotion, num: Any) -> dict[str, Any]:
+    """``results.steady_motion`` (docs/json-output.md#steady-motion)."""
+    states = []
+    for x in st.states:
+        one: dict[str, Any] = {
+            "at": _at(x.at, num),
+            "exists": x.exists,
+            "exists_where": _relations(x.exists_where),
+            "required": _at(x.required, num),
+            "inputs": {str(u): value(num(v)) for u, v in x.inputs},
+            "momenta": _at(x.momenta, num),
+            "mass_matrix": matrix(num(x.mass)),
+            "damping_matrix": matrix(num(x.damping)),
+            "stiffness_matrix": matrix(num(x.stiffness)),
+            "stability": x.verdict,
+            "reason": x.reason,
+        }
+        if x.stable_where:
+            one["stable_where"] = _relations(x.stable_where)
+        if x.eigenvalues is not None:
+            one["eigenvalues"] = [_complex(z) for z in x.eigenvalues]
+        states.append(one)
+    return {
+        "cyclic": list(st.cyclic),
+        "rates": _at(st.rates, num),
+        "free": list(st.free),
+        "others": list(st.others),
+        "free_others": list(st.free_others),
+        "held": st.held,
+        "residual": vector(num(st.residual)),
+        "method": st.method,
+        **({"remark": st.remark} if st.remark else {}),
+        "states": states,
+    }

@@ -32,6 +32,7 @@ from tutgen.render.sections.matrix import christoffel_symbols, matrix_form
 from tutgen.render.sections.momentum import momentum
 from tutgen.render.sections.newton_euler import newton_euler
 from tutgen.render.sections.simulation import simulation
+from tutgen.render.sections.steady import steady_motion
 from tutgen.render.wording import engine_parts
 from tutgen.spec.units import decimal_text, in_unit
 
@@ -59,6 +60,7 @@ BUILDERS: dict[StepKind, tuple[Builder, ...]] = {
     StepKind.SIMULATION: (simulation,),
     StepKind.EQUILIBRIA: (equilibria,),
     StepKind.LINEARIZATION: (linearization,),
+    StepKind.STEADY_MOTION: (steady_motion,),
     StepKind.MOMENTUM: (momentum,),
     StepKind.CONSTRAINTS: (constraint_kinematics,),
     StepKind.LAGRANGE_MULTIPLIERS: (multipliers,),

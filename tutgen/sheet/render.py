@@ -45,6 +45,7 @@ ASKED = {
     Ask.EQUILIBRIA: "the equilibria and their stability",
     Ask.LINEARIZATION: "the linear model about the equilibrium, its eigenvalues and stability",
     Ask.MOMENTUM: "the linear and angular momentum of each body and in total",
+    Ask.STEADY_MOTION: "the steady motions at constant rates of the cyclic coordinates and their stability",
 }
 
 

@@ -489,6 +489,7 @@ AskItem = Literal[
     "equilibria",
     "linearization",
     "momentum",
+    "steady_motion",
 ]
 
 MethodItem = Literal["lagrange", "newton_euler"]
@@ -531,6 +532,11 @@ class AnalysisSpec(SpecModel):
         default_factory=dict,
         description="Parameters without a value that are inputs u, with their value at the equilibrium, e.g. "
         "{F: 0}: the columns of the input matrix B. Other parameters without a value stay symbols.",
+    )
+    steady: dict[Name, Expr] | None = Field(
+        None,
+        description="The cyclic coordinates of `ask: [steady_motion]` with their constant rate, e.g. {phi: Omega} "
+        "(without it, every cyclic coordinate is found and its rate stays its own symbol, phi_dot).",
     )
 
 
@@ -649,7 +655,9 @@ class SpecDoc(SpecModel):
     figure: FigureSpec | None = Field(None, description="How the figure is drawn, or the instructor's own picture.")
     simulate: SimulateSpec | None = Field(None, description="Initial conditions and inputs for `tutgen simulate`.")
     analysis: AnalysisSpec | None = Field(
-        None, description="The equilibrium and the inputs of `ask: [equilibria, linearization]`."
+        None,
+        description="The equilibrium and the inputs of `ask: [equilibria, linearization]`, and the rates of "
+        "`ask: [steady_motion]`.",
     )
     marking: dict[str, Any] | None = Field(
         None,

@@ -1,4 +1,5 @@
-"""Beyond the equations of motion (issue 18): equilibria, and the linear model about each.
+"""Beyond the equations of motion (issue 18): equilibria, the linear model about each, momentum and
+steady motion (:mod:`.steady`).
 
 :func:`analyse` reads a :class:`~tutgen.engine.derivation.Derivation` whose equations of motion are
 derived and returns an :class:`Analysis`: the rest configurations (:mod:`.equilibria`) and the linear
@@ -14,9 +15,20 @@ from dataclasses import dataclass
 from tutgen.engine.analysis.equilibria import Equilibria, check_given, find_equilibria, rest_residual
 from tutgen.engine.analysis.linear import LinearModel, Mode, linearize
 from tutgen.engine.analysis.momentum import Momentum, momentum
+from tutgen.engine.analysis.steady import SteadyMotion, SteadyState, steady_motion
 from tutgen.engine.derivation import Derivation
 
-__all__ = ["MAX_LINEARIZED", "Analysis", "Equilibria", "LinearModel", "Mode", "Momentum", "analyse"]
+__all__ = [
+    "MAX_LINEARIZED",
+    "Analysis",
+    "Equilibria",
+    "LinearModel",
+    "Mode",
+    "Momentum",
+    "SteadyMotion",
+    "SteadyState",
+    "analyse",
+]
 
 #: at most this many equilibria found are linearised (a spec names the one it wants with `about`)
 MAX_LINEARIZED = 6
@@ -32,14 +44,19 @@ class Analysis:
     classified: tuple[LinearModel, ...]
     linear: tuple[LinearModel, ...]
     momentum: Momentum | None = None  # `ask: [momentum]`
+    steady: SteadyMotion | None = None  # `ask: [steady_motion]`
 
 
-def analyse(d: Derivation, equilibria: bool, linearization: bool, with_momentum: bool = False) -> Analysis:
-    """The equilibria, the linear models and the momenta a derivation asks for (see the module's docstring)."""
+def analyse(
+    d: Derivation, equilibria: bool, linearization: bool, with_momentum: bool = False, steady: bool = False
+) -> Analysis:
+    """The equilibria, the linear models, the momenta and the steady motions a derivation asks for (see
+    the module's docstring)."""
     system = d.system
     mo = momentum(d) if with_momentum else None
+    st = steady_motion(d) if steady else None
     if not (equilibria or linearization):
-        return Analysis(None, (), (), mo)
+        return Analysis(None, (), (), mo, st)
     about = system.analysis.about if system.analysis is not None else None
     found = find_equilibria(d) if equilibria or about is None else None
     if found is None:
@@ -48,4 +65,4 @@ def analyse(d: Derivation, equilibria: bool, linearization: bool, with_momentum:
     linear: tuple[LinearModel, ...] = ()
     if linearization:
         linear = (linearize(d, about),) if about is not None else classified
-    return Analysis(found if equilibria else None, classified if equilibria else (), linear, mo)
+    return Analysis(found if equilibria else None, classified if equilibria else (), linear, mo, st)

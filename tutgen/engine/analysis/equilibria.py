@@ -20,7 +20,7 @@ from tutgen.engine.tidy import tidy
 from tutgen.errors import SpecError, SpecErrors
 from tutgen.limits import checkpoint
 
-__all__ = ["BOX", "Equilibria", "check_given", "find_equilibria", "input_values", "rest_residual"]
+__all__ = ["BOX", "Equilibria", "check_given", "find_equilibria", "input_values", "rest_residual", "roots"]
 
 #: the box searched for the roots of a numeric spec that sympy cannot solve: angles over one turn,
 #: other coordinates (lengths, SI) within +- BOX
@@ -246,3 +246,30 @@ def _solve_numeric(d: Derivation, residual: sp.ImmutableMatrix, present: list) -
         if inside and not any(np.allclose(x, r, atol=1e-7) for r in roots):
             roots.append(x)
     return [{qi: sp.Float(round(float(xi), 12), 15) for qi, xi in zip(q, r, strict=True)} for r in roots]
+
+
+def roots(
+    d: Derivation, residual: sp.ImmutableMatrix, present: list
+) -> tuple[list[tuple[tuple[str, sp.Expr], ...]], str]:
+    """The roots of ``residual`` in the coordinates ``present`` (every family, symbolically where sympy
+    can, else numerically in the box when everything is a number), each as (name, value) pairs of
+    ``present`` in order, an angle's value in (-pi, pi]; with how they were found ("symbolic", "numeric"
+    or "none"). Shared with steady motion (tutgen.engine.analysis.steady)."""
+    equations = [e for e in residual if e != 0]
+    found = _solve_symbolic(equations, [c.q for c in present])
+    method = "symbolic"
+    if found is None and not (residual.free_symbols - {c.q for c in d.system.coordinates} - set(d.values)):
+        found = _solve_numeric(d, residual, present)
+        method = "numeric"
+    if not found:
+        return [], "none"
+    out: list[tuple[tuple[str, sp.Expr], ...]] = []
+    seen: set[tuple[str, ...]] = set()
+    for sol in found:
+        values = tuple((c.name, _canonical(d, c.name, tidy(sp.sympify(sol.get(c.q, sp.Integer(0)))))) for c in present)
+        key = tuple(sp.srepr(v) for _, v in values)
+        if key not in seen:
+            seen.add(key)
+            out.append(values)
+    out.sort(key=lambda vs: [default_sort_key(v) for _, v in vs])
+    return out, method

@@ -1,4 +1,5 @@
-"""`analysis`: the equilibrium and the inputs of `ask: [equilibria, linearization]`."""
+"""`analysis`: the equilibrium and the inputs of `ask: [equilibria, linearization]`, the rates of
+`ask: [steady_motion]`."""
 
 from __future__ import annotations
 
@@ -6,6 +7,7 @@ import difflib
 
 import sympy as sp
 
+from tutgen.errors import Location
 from tutgen.model.analysis import Analysis
 from tutgen.spec.builders.context import Context
 from tutgen.spec.loader import KeyPath
@@ -64,4 +66,33 @@ def build_analysis(ctx: Context) -> Analysis | None:
         if result is not None:
             inputs.append((ctx.params[name], result))
             places.append((f"inputs.{name}", ctx.smap.location(path)))
-    return Analysis(about=about, inputs=tuple(inputs), origin=ctx.smap.key_location(base), places=tuple(places))
+    steady = _steady(ctx, spec.steady, places) if spec.steady is not None else None
+    return Analysis(
+        about=about, inputs=tuple(inputs), origin=ctx.smap.key_location(base), places=tuple(places), steady=steady
+    )
+
+
+def _steady(
+    ctx: Context, spec: dict[str, object], places: list[tuple[str, Location]]
+) -> tuple[tuple[str, sp.Expr], ...]:
+    """`steady`: known coordinates, each with a constant rate (numbers and parameters). Whether each is
+    cyclic is known only once H, G and Q are derived (tutgen.engine.analysis.steady reports it at
+    ``steady.<name>``)."""
+    known = list(ctx.coords)
+    out: list[tuple[str, sp.Expr]] = []
+    for name, value in spec.items():
+        path: KeyPath = ("analysis", "steady", name)
+        if name not in ctx.coords:
+            ctx.error(
+                path,
+                f"'steady' names unknown coordinate '{name}' (known: {', '.join(known) or 'none'})",
+                _hint(name, known),
+                key=True,
+            )
+            continue
+        result = ctx.expr(path, value, ctx.params, None, "a steady rate")
+        if result is not None:
+            out.append((name, result))
+            places.append((f"steady.{name}", ctx.smap.key_location(path)))
+    places.append(("steady", ctx.smap.key_location(("analysis", "steady"))))
+    return tuple(out)

@@ -44,7 +44,24 @@ def build_ask(ctx: Context, dynamic: bool) -> frozenset[Ask]:
                 )
             else:
                 asked.add(a)
-        if ctx.doc.analysis is not None and dynamic and not asked & {Ask.EQUILIBRIA, Ask.LINEARIZATION}:
+        if ctx.doc.analysis is not None and ctx.doc.analysis.steady is not None and Ask.STEADY_MOTION not in asked:
+            ctx.error(
+                ("analysis", "steady"),
+                "`analysis.steady` gives the cyclic coordinates and rates of `steady_motion`, and `ask` does not "
+                "name it",
+                "add `steady_motion` to `ask`, or remove `steady`",
+                key=True,
+            )
+        elif (
+            ctx.doc.analysis is not None
+            and dynamic
+            and not asked
+            & {
+                Ask.EQUILIBRIA,
+                Ask.LINEARIZATION,
+                Ask.STEADY_MOTION,
+            }
+        ):
             ctx.error(
                 ("analysis",),
                 "`analysis` gives the equilibrium and inputs of `equilibria` and `linearization`, and `ask` "
