@@ -121,6 +121,18 @@ def render_sheet(context: dict[str, Any], kind: str, fmt: str) -> str:
     return str(_ENVS[fmt].get_template(f"sheet-{kind}.{ext}.j2").render(**context))
 
 
+def warm_templates(formats: Sequence[str]) -> None:
+    """Compile the sheet templates of ``formats`` ("md", "tex", "pdf") in this process, before it forks
+    its workers, so that each worker does not compile them again."""
+    from tutgen.render.env import latex_env, markdown_env
+
+    for fmt in {"md" if f == "md" else "tex" for f in formats}:
+        if fmt not in _ENVS:
+            _ENVS[fmt] = markdown_env() if fmt == "md" else latex_env()
+        for kind in ("questions", "solutions"):
+            _ENVS[fmt].get_template(f"sheet-{kind}.{fmt}.j2")
+
+
 def answer_key(results: str | Derivation, spec_name: str, student: str) -> str:
     """The answer key of one problem of one variant, in the answers format of ``tutgen check``
     (docs/check.md): every result of ``tutgen solve --format json``, with this variant's numbers.
