@@ -183,3 +183,14 @@ def test_decimal_inputs_make_a_decimal_document() -> None:
     assert is_decimal_document(solved(str(P02))[0]) and not is_decimal_document(solved(str(P05))[0])
     kinematics = " ".join(_texs(P02, "Kinematics"))
     assert r"0.45 \cos\theta" in kinematics and r"\frac{9" not in kinematics
+
+
+def test_a_constant_mass_matrix_is_said_once() -> None:
+    """The Christoffel section says that every symbol vanishes; the remarks do not say it again (the
+    JSON keeps the engine's remark)."""
+    from tutgen.render.markdown import render_markdown
+
+    _, d, _ = solved(str(SPECS / "tutorial-1" / "p06-two-prismatic.yaml"))
+    text = render_markdown(d)
+    assert text.count("every Christoffel symbol vanishes") == 1
+    assert any("every Christoffel symbol vanishes" in r for r in d.remarks)

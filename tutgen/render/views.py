@@ -11,10 +11,11 @@ tutgen/render/blocks.py.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from tutgen.engine.derivation import Derivation
+from tutgen.engine.remarks import REMARK_CONSTANT_MASS_MATRIX
 from tutgen.engine.steps import StepKind
 from tutgen.figure.view import figure_view
 from tutgen.model.system import System
@@ -106,6 +107,14 @@ def coordinate_items(system: System) -> list[list[Part]]:
     return [[math(c.latex)] + (rich(c.description, tex, ": ") if c.description else []) for c in system.coordinates]
 
 
+def _said_in(parts: Sequence[dict[str, Any]]) -> frozenset[str]:
+    """The engine's remarks that a printed section already makes in its own words (the Christoffel
+    section of a constant H says that every symbol vanishes): not said twice."""
+    if any("Christoffel" in str(sec.get("title", "")) for sec in parts):
+        return frozenset({REMARK_CONSTANT_MASS_MATRIX})
+    return frozenset()
+
+
 def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
     """The template context for a worked solution. With ``decimals`` (a tutorial sheet's variant, whose
     data are decimals like 1.5 kg and 0.6 m) every fraction of a number is printed as a decimal
@@ -132,7 +141,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
         "sections": parts,
         "figure": figure_view(s),  # tutgen/figure/view.py: the schematic (TikZ, SVG name) or the spec's picture
         # tutgen's own sentences, their ASCII maths (q_ddot, theta1, H = H^T) typeset
-        "remarks": [engine_parts(r, tex) for r in d.remarks],
+        "remarks": [engine_parts(r, tex) for r in d.remarks if r not in _said_in(parts)],
         "checks": [
             engine_parts(
                 c.detail

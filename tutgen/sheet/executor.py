@@ -23,6 +23,7 @@ from __future__ import annotations
 import os
 import re
 import signal
+import threading
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from typing import Any, Protocol, TypeVar
@@ -69,6 +70,7 @@ class SerialExecutor:
 
 
 _worker_state: dict[str, Any] = {"busy": False}
+_SHIELD = {signal.SIGINT, signal.SIGTERM, *([signal.SIGALRM] if hasattr(signal, "SIGALRM") else [])}
 
 
 def _init_worker(fn: Callable[[Any, Any], Any], shared: Any) -> None:
@@ -78,6 +80,13 @@ def _init_worker(fn: Callable[[Any, Any], Any], shared: Any) -> None:
     signal.signal(signal.SIGTERM, _worker_terminated)
     if hasattr(signal, "SIGALRM"):  # the parent's deadline handler came with the fork; the parent keeps time
         signal.signal(signal.SIGALRM, signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):
+        # forked inside the parent's shielded() block (ProcessExecutor.map): this process's own copy of
+        # that block never ends, so end it here; a signal sent meanwhile arrives now
+        import tutgen.limits
+
+        tutgen.limits._state["shield"] = 0
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, _SHIELD)
 
 
 def _worker_terminated(signum: int, frame: object) -> None:
@@ -99,6 +108,7 @@ def _run_in_worker(job: Any) -> Any:
 def _stop_workers(pool: ProcessPoolExecutor) -> None:
     """Terminate every worker of ``pool`` and wait for each (SIGKILL after :data:`WORKER_GRACE`)."""
     procs = list((getattr(pool, "_processes", None) or {}).values())
+    manager = getattr(pool, "_executor_manager_thread", None)  # shutdown() forgets it
     for proc in procs:
         if proc.is_alive():
             proc.terminate()
@@ -108,10 +118,11 @@ def _stop_workers(pool: ProcessPoolExecutor) -> None:
             proc.kill()
             proc.join(1.0)
     pool.shutdown(wait=False, cancel_futures=True)
-    _join_manager(pool)
+    if manager is not None:
+        _join_manager(manager)
 
 
-def _join_manager(pool: ProcessPoolExecutor) -> None:
+def _join_manager(thread: threading.Thread) -> None:
     """Wait for the pool's manager thread to end (it does, once its workers are gone) and forget it.
 
     Python 3.11's exit hook (``concurrent.futures.process._python_exit``) wakes every manager thread
@@ -121,9 +132,6 @@ def _join_manager(pool: ProcessPoolExecutor) -> None:
     from the hook's table is never written to."""
     import concurrent.futures.process as cfp
 
-    thread = getattr(pool, "_executor_manager_thread", None)
-    if thread is None:
-        return
     thread.join(WORKER_GRACE + 2.0)
     table = getattr(cfp, "_threads_wakeups", None)
     if table is not None and not thread.is_alive():
@@ -163,7 +171,12 @@ class ProcessExecutor:
             max_workers=workers, mp_context=_fork_context(), initializer=_init_worker, initargs=(fn, shared)
         )
         try:
-            futures = [pool.submit(_run_in_worker, job) for job in jobs]
+            # the first submit forks every worker (the fork start method); a signal then must wait until
+            # the worker has its own handlers (_init_worker), or it runs the parent's in Python's at-fork
+            # hooks and prints "Exception ignored in ..." with a traceback
+            with shielded():
+                futures = [pool.submit(_run_in_worker, jobs[0])]
+            futures += [pool.submit(_run_in_worker, job) for job in jobs[1:]]
             for _ in as_completed(futures):
                 if on_done:
                     on_done()
