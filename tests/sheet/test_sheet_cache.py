@@ -62,6 +62,26 @@ def test_the_whole_tutorial_sheet_by_substitution_is_byte_identical(monkeypatch:
     _assert_same(cached, fresh, sheet, 4)
 
 
+@pytest.mark.parametrize("key", ["p03", "p05", "p09"])
+def test_a_keys_results_are_those_of_the_whole_json(key: str) -> None:
+    """The keys take ``results`` without building the JSON's steps: the same results as the whole
+    document of `tutgen solve --format json`."""
+    from tutgen.render.jsonout import derivation_to_json
+    from tutgen.sheet.build import ProblemBase, variant_derivation
+    from tutgen.sheet.render import results_json
+
+    sheet = _sheet([key])
+    (p,) = sheet.problems
+    derivations, _ = derive_problems(sheet)
+    d, values, _, _ = variant_derivation(
+        ProblemBase(p.number, p.key, str(p.path), p.text, derivations[0]), "v003", 7, None
+    )
+    assert values
+    whole = derivation_to_json(d)
+    assert whole["steps"]  # the steps the keys leave out
+    assert results_json(d) == whole["results"]
+
+
 def test_each_problem_and_values_is_built_once_per_sheet() -> None:
     """The units of a sheet: the nominal problems, and each distinct problem-and-values once (a problem
     that does not vary is built once, however many variants)."""

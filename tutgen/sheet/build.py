@@ -194,7 +194,7 @@ def build_unit(shared: Shared, unit: Unit) -> UnitResult:
     """One problem at one set of values: its derivation by substitution (or afresh), its worked
     solution's view, its keys and its assets; runs in a worker."""
     from tutgen.sheet.assets import problem_assets
-    from tutgen.sheet.render import key_results, marking_key, problem_view
+    from tutgen.sheet.render import key_results, marking_key, problem_view, results_json
 
     base = shared.problems[unit.problem]
     start = time.perf_counter()
@@ -210,8 +210,9 @@ def build_unit(shared: Shared, unit: Unit) -> UnitResult:
     wants_lms = any(f in LMS_FILES for f in shared.formats) and shared.has_variants == (unit.variant is not None)
     results = marks = ""
     if unit.variant is not None or wants_lms:
-        results = key_results(d)
-        marks = marking_key(d, base.marking, f"specs/{base.key}.yaml")
+        document = results_json(d)  # once, for both keys
+        results = key_results(d, document)
+        marks = marking_key(d, base.marking, f"specs/{base.key}.yaml", document)
     extra = problem_assets(base.key, base.number, d, shared.formats)
     total = time.perf_counter() - start
     return UnitResult(view, d.system, extra, results, marks, concrete, fresh, t_derive, total - t_derive)
