@@ -88,3 +88,26 @@ def test_the_package_imports_only_its_declared_dependencies() -> None:
         if extra:
             undeclared[str(path.relative_to(ROOT))] = sorted(extra)
     assert undeclared == {}
+
+
+def test_the_command_line_starts_without_the_heavy_modules() -> None:
+    """`tutgen --help` and `tutgen --version` (issue 17: start-up <= 0.2 s) import neither sympy, numpy,
+    pydantic, jinja2 nor yaml: each command imports what it needs inside its function. A fresh
+    interpreter, so that nothing the tests imported counts."""
+    import subprocess
+    import sys
+
+    heavy = ("sympy", "numpy", "pydantic", "jinja2", "yaml")
+    code = (
+        "import sys\n"
+        "import tutgen.cli.main as m\n"
+        "for argv in (['--help'], ['--version']):\n"
+        "    try:\n"
+        "        m.app(argv, prog_name='tutgen')\n"
+        "    except SystemExit:\n"
+        "        pass\n"
+        f"print('heavy:' + ','.join(n for n in {heavy!r} if n in sys.modules))\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True)
+    assert "Usage" in done.stdout and "tutgen " in done.stdout
+    assert done.stdout.splitlines()[-1] == "heavy:"

@@ -17,7 +17,6 @@ from __future__ import annotations
 import csv
 import dataclasses
 import io
-import os
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -46,14 +45,38 @@ class ProblemBase:
 
 
 @dataclass(frozen=True)
+class Unit:
+    """One problem at one set of values, built once per sheet: the nominal sheet's (``variant`` None), or
+    that of the first variant with these values (every variant with the same values shares it)."""
+
+    problem: int  # the index of the problem in Shared.problems
+    variant: str | None
+
+
+@dataclass(frozen=True)
+class UnitResult:
+    """What the sheets of one problem at one set of values are made of (plain data, pickled back)."""
+
+    view: dict[str, Any]
+    system: Any  # the problem's system as set (its numbers): its figure and LMS question
+    assets: Any  # its free-body SVGs and simulation plots (tutgen/sheet/assets.py)
+    results: str = ""  # the answer key's results (a variant's, or the nominal one's for an LMS export)
+    marks: str = ""  # the marking key
+    concrete: str = ""  # a variant's concrete spec
+    fresh: bool = False  # derived afresh, not by substitution (variant_derivation)
+    derive_seconds: float = 0.0
+    render_seconds: float = 0.0
+
+
+@dataclass(frozen=True)
 class Shared:
     header: dict[str, str]
     problems: tuple[ProblemBase, ...]
     formats: tuple[str, ...]
     seed: int
     method: str | None  # the --method override, or None: each spec's own `methods:`
-    build: str = ""  # names one build: a worker's memo of another build's results is dropped
     has_variants: bool = False  # an LMS export holds the variants, or (without) the nominal sheet
+    units: dict[tuple[Any, ...], UnitResult] = field(default_factory=dict)  # unit_key -> its result
 
 
 @dataclass(frozen=True)
@@ -142,25 +165,72 @@ def substituted(derivation: Derivation, system: Any) -> VariantDerivation:
     return VariantDerivation(**fields)
 
 
-#: Per process: (seed, method, problem, values) -> (problem view, key results, concrete spec, derived afresh).
-_memo: dict[Any, Any] = {}
+def unit_key(shared: Shared, problem: int, variant: str | None) -> tuple[Any, ...]:
+    """The values a unit is built at: the same key, the same input, the same text (no Python ``hash()``
+    of anything: a key only looks results up, in one build)."""
+    if variant is None:
+        return (problem, None)
+    from tutgen.sheet.variants import sample
+
+    base = shared.problems[problem]
+    return (problem, tuple(sample(base.derivation.system, base.key, variant, shared.seed).items()))
+
+
+def plan_units(shared: Shared, variants: Sequence[Variant]) -> list[Unit]:
+    """Every distinct problem-and-values of the sheet, once: the nominal problems, then each variant's
+    problems whose values no earlier variant had (a problem that does not vary is built once)."""
+    units = [Unit(i, None) for i in range(len(shared.problems))]
+    seen: set[tuple[Any, ...]] = set()
+    for v in variants:
+        for i in range(len(shared.problems)):
+            key = unit_key(shared, i, v.id)
+            if key not in seen:
+                seen.add(key)
+                units.append(Unit(i, v.id))
+    return units
+
+
+def build_unit(shared: Shared, unit: Unit) -> UnitResult:
+    """One problem at one set of values: its derivation by substitution (or afresh), its worked
+    solution's view, its keys and its assets; runs in a worker."""
+    from tutgen.sheet.assets import problem_assets
+    from tutgen.sheet.render import key_results, marking_key, problem_view, results_json
+
+    base = shared.problems[unit.problem]
+    start = time.perf_counter()
+    t_derive = 0.0
+    concrete, fresh = "", False
+    if unit.variant is None:
+        d: Derivation = substituted(base.derivation, base.derivation.system)
+    else:
+        d, _, fresh, concrete = variant_derivation(base, unit.variant, shared.seed, shared.method)
+        t_derive = time.perf_counter() - start if fresh else 0.0
+        d = _simulated(d)
+    view = problem_view(base.number, d, solution=True)
+    wants_lms = any(f in LMS_FILES for f in shared.formats) and shared.has_variants == (unit.variant is not None)
+    results = marks = ""
+    if unit.variant is not None or wants_lms:
+        document = results_json(d)  # once, for both keys
+        results = key_results(d, document)
+        marks = marking_key(d, base.marking, f"specs/{base.key}.yaml", document)
+    extra = problem_assets(base.key, base.number, d, shared.formats)
+    total = time.perf_counter() - start
+    return UnitResult(view, d.system, extra, results, marks, concrete, fresh, t_derive, total - t_derive)
 
 
 def build_job(shared: Shared, job: Job) -> JobResult:
-    """Every file of one sheet (nominal or a variant); runs in a worker."""
-    from tutgen.sheet.assets import problem_assets
+    """Every file of one sheet (nominal or a variant), from its problems' units (``shared.units``,
+    built by :func:`build_unit`); runs in a worker."""
     from tutgen.sheet.compact import shared_intros
-    from tutgen.sheet.render import answer_key, key_results, marking_key, problem_view, render_sheet
-    from tutgen.sheet.variants import quantity_text, sample
+    from tutgen.sheet.render import answer_key, render_sheet
+    from tutgen.sheet.variants import quantity_text
 
-    if _memo.get("build") != shared.build:
-        _memo.clear()
-        _memo["build"] = shared.build
-    t_derive = 0.0
     start = time.perf_counter()
-    views: list[dict[str, Any]] = []
-    systems: list[Any] = []  # each problem's system as set (a variant's numbers), for its figure
-    assets: list[Any] = []  # each problem's free-body SVGs and simulation plots (tutgen/sheet/assets.py)
+    variant = job.variant.id if job.variant is not None else None
+    units = [shared.units[unit_key(shared, i, variant)] for i in range(len(shared.problems))]
+    views = [u.view for u in units]
+    systems = [u.system for u in units]  # each problem's system as set (a variant's numbers), for its figure
+    assets = [u.assets for u in units]
     files: list[tuple[str, str | bytes]] = []
     values_out: list[tuple[str, str, str]] = []
     rederived: list[str] = []
@@ -171,45 +241,21 @@ def build_job(shared: Shared, job: Job) -> JobResult:
     if job.variant is not None:
         prefix = f"variants/{job.variant.id}/"
         header["label"] = job.variant.label
-        for base in shared.problems:
-            t0 = time.perf_counter()
-            values = sample(base.derivation.system, base.key, job.variant.id, shared.seed)
-            memo_key = (shared.seed, shared.method, base.number, base.key, base.text, tuple(values.items()))
-            if memo_key not in _memo:
-                # a variant with the same values as one this worker has built already (a problem that
-                # does not vary, or varies little) reuses its results: the same input gives the same text
-                d, values, fresh, concrete = variant_derivation(base, job.variant.id, shared.seed, shared.method)
-                if fresh:
-                    t_derive += time.perf_counter() - t0
-                d = _simulated(d)
-                view = problem_view(base.number, d, solution=True)
-                marks = marking_key(d, base.marking, f"specs/{base.key}.yaml")
-                extra = problem_assets(base.key, base.number, d, shared.formats)
-                _memo[memo_key] = (view, key_results(d), concrete, fresh, d.system, marks, extra)
-            view, results, concrete, fresh, system, marks, extra = _memo[memo_key]
-            if fresh:
+        for i, (base, u) in enumerate(zip(shared.problems, units, strict=True)):
+            if u.fresh:
                 rederived.append(base.key)
-            views.append(view)
-            systems.append(system)
-            assets.append(extra)
             params = {p.name: p for p in base.derivation.system.parameters}
-            values_out += [(base.key, n, quantity_text(params[n], v)) for n, v in values.items()]
-            files.append((f"{prefix}specs/{base.key}.yaml", concrete))
-            key = answer_key(results, f"specs/{base.key}.yaml", job.variant.label)
+            _, values = unit_key(shared, i, variant)
+            values_out += [(base.key, n, quantity_text(params[n], v)) for n, v in values]
+            files.append((f"{prefix}specs/{base.key}.yaml", u.concrete))
+            key = answer_key(u.results, f"specs/{base.key}.yaml", job.variant.label)
             files.append((f"{prefix}key-{base.key}.yaml", key))
-            files.append((f"{prefix}marking-{base.key}.yaml", marks))
+            files.append((f"{prefix}marking-{base.key}.yaml", u.marks))
             if wants_lms:
-                lms.append(_lms(base, view, results, marks, system, job.variant.id, job.variant.label))
-    else:
-        derivations = [substituted(b.derivation, b.derivation.system) for b in shared.problems]
-        views = [problem_view(b.number, d, solution=True) for b, d in zip(shared.problems, derivations, strict=True)]
-        systems = [d.system for d in derivations]
-        pairs = zip(shared.problems, derivations, strict=True)
-        assets = [problem_assets(b.key, b.number, d, shared.formats) for b, d in pairs]
-        if wants_lms:
-            for b, d, v in zip(shared.problems, derivations, views, strict=True):
-                marks = marking_key(d, b.marking, f"specs/{b.key}.yaml")
-                lms.append(_lms(b, v, key_results(d), marks, d.system, "nominal", ""))
+                lms.append(_lms(base, u.view, u.results, u.marks, u.system, job.variant.id, job.variant.label))
+    elif wants_lms:
+        for base, u in zip(shared.problems, units, strict=True):
+            lms.append(_lms(base, u.view, u.results, u.marks, u.system, "nominal", ""))
     views = [a.view(v, md=False) for a, v in zip(assets, views, strict=True)]  # the plots' names on the sheet
     figures = _figures(shared, systems) if "md" in shared.formats else {}
     views = shared_intros(views)  # a section's conventions printed once per sheet (tutgen/sheet/compact.py)
@@ -240,7 +286,7 @@ def build_job(shared: Shared, job: Job) -> JobResult:
     files += [(f"{prefix}{name}", svg) for name, svg in figures.values()]
     files += [(f"{prefix}{name}", content) for a in assets for name, content in a.files]
     total = time.perf_counter() - start
-    return JobResult(tuple(files), tuple(values_out), tuple(rederived), t_derive, total - t_derive, tuple(lms))
+    return JobResult(tuple(files), tuple(values_out), tuple(rederived), 0.0, total, tuple(lms))
 
 
 def _lms(base: ProblemBase, view: Any, results: str, marks: str, system: Any, variant: str, label: str) -> Any:
@@ -331,14 +377,28 @@ def build_sheet(
         formats=tuple(f for f in FORMATS if f in formats),
         seed=seed,
         method=method,
-        build=os.urandom(8).hex(),  # scopes the workers' memo only; never part of an output
         has_variants=bool(variants),
     )
+    run = executor or SerialExecutor()
+    # first every distinct problem-and-values (the expensive part: views, keys), each once, spread over
+    # the workers in small pieces; then every sheet from them (templates only), in the order of the jobs
+    units = plan_units(shared, variants)
+    _warm_imports()  # imported once here, before a pool forks its workers
+    done = _ticks(len(units), 1 + len(variants), on_done)
+    unit_results = run.map(build_unit, shared, units, done)
+    shared = dataclasses.replace(
+        shared, units={unit_key(shared, u.problem, u.variant): r for u, r in zip(units, unit_results, strict=True)}
+    )
+    for r in unit_results:
+        out.derive_seconds += r.derive_seconds
+        out.render_seconds += r.render_seconds
+    _warm_templates(shared.formats)  # compiled once here, inherited by the workers of a fork
     jobs = [Job(None), *(Job(v) for v in variants)]
-    results = (executor or SerialExecutor()).map(build_job, shared, jobs, on_done)
+    results = run.map(build_job, shared, jobs, None)
+    if on_done:
+        on_done()  # the last tick: every sheet is built
     for job, result in zip(jobs, results, strict=True):
         out.files += list(result.files)
-        out.derive_seconds += result.derive_seconds
         out.render_seconds += result.render_seconds
         out.rederived += [(job.variant.id if job.variant else "", k) for k in result.rederived]
     if variants:
@@ -351,6 +411,41 @@ def build_sheet(
         files, out.notes = lms_files(sheet.title, questions, lms_formats, LMS_FILES)
         out.files += files
     return out
+
+
+def _ticks(units: int, jobs: int, on_done: Callable[[], None] | None) -> Callable[[], None] | None:
+    """``on_done`` as the progress of the sheets: of the ``jobs`` ticks, all but the last spread over the
+    ``units`` (most of the time), the last once every sheet is built."""
+    if on_done is None:
+        return None
+    state = {"done": 0, "ticked": 0}
+
+    def tick() -> None:
+        state["done"] += 1
+        due = state["done"] * (jobs - 1) // max(units, 1)
+        while state["ticked"] < due:
+            state["ticked"] += 1
+            on_done()
+
+    return tick
+
+
+def _warm_imports() -> None:
+    """Import what :func:`build_unit` needs (the views, the JSON of the keys, sympy's solvers that the
+    views call), so that the workers of a fork inherit the modules instead of each importing them."""
+    import sympy.calculus.util
+    import sympy.solvers.solveset  # noqa: F401
+
+    import tutgen.render.jsonout
+    import tutgen.sheet.assets
+    import tutgen.sheet.render  # noqa: F401
+
+
+def _warm_templates(formats: Sequence[str]) -> None:
+    """Compile the sheets' templates in this process (once per process; a forked worker inherits them)."""
+    from tutgen.sheet.render import warm_templates
+
+    warm_templates([f for f in formats if f not in LMS_FILES])
 
 
 def _index(variants: Sequence[Variant], results: Sequence[JobResult]) -> str:

@@ -138,6 +138,16 @@ def _join_manager(thread: threading.Thread) -> None:
         table.pop(thread, None)
 
 
+def _fork_context() -> Any:
+    """Fork where it is safe (Linux): the workers inherit the shared argument (the derivations, the built
+    units), the imported modules and the compiled templates instead of receiving and rebuilding them;
+    elsewhere the platform's default."""
+    import multiprocessing
+    import sys
+
+    return multiprocessing.get_context("fork") if sys.platform.startswith("linux") else None
+
+
 class ProcessExecutor:
     """A pool of ``workers`` processes (default: one per core); the shared argument is handed to each
     worker once, when it starts."""
@@ -157,7 +167,9 @@ class ProcessExecutor:
             return SerialExecutor().map(fn, shared, jobs, on_done)
         from tutgen.limits import shielded
 
-        pool = ProcessPoolExecutor(max_workers=workers, initializer=_init_worker, initargs=(fn, shared))
+        pool = ProcessPoolExecutor(
+            max_workers=workers, mp_context=_fork_context(), initializer=_init_worker, initargs=(fn, shared)
+        )
         try:
             # the first submit forks every worker (the fork start method); a signal then must wait until
             # the worker has its own handlers (_init_worker), or it runs the parent's in Python's at-fork

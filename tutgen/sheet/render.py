@@ -122,6 +122,18 @@ def render_sheet(context: dict[str, Any], kind: str, fmt: str) -> str:
     return str(_ENVS[fmt].get_template(f"sheet-{kind}.{ext}.j2").render(**context))
 
 
+def warm_templates(formats: Sequence[str]) -> None:
+    """Compile the sheet templates of ``formats`` ("md", "tex", "pdf") in this process, before it forks
+    its workers, so that each worker does not compile them again."""
+    from tutgen.render.env import latex_env, markdown_env
+
+    for fmt in {"md" if f == "md" else "tex" for f in formats}:
+        if fmt not in _ENVS:
+            _ENVS[fmt] = markdown_env() if fmt == "md" else latex_env()
+        for kind in ("questions", "solutions"):
+            _ENVS[fmt].get_template(f"sheet-{kind}.{fmt}.j2")
+
+
 def answer_key(results: str | Derivation, spec_name: str, student: str) -> str:
     """The answer key of one problem of one variant, in the answers format of ``tutgen check``
     (docs/check.md): every result of ``tutgen solve --format json``, with this variant's numbers.
@@ -134,20 +146,32 @@ def answer_key(results: str | Derivation, spec_name: str, student: str) -> str:
     return f"# The answer key of {spec_name}: check it with `tutgen check {spec_name} THIS_FILE`.\n" + text
 
 
-def key_results(derivation: Derivation) -> str:
-    """The results part of an answer key (YAML)."""
+def key_results(derivation: Derivation, results: dict[str, Any] | None = None) -> str:
+    """The results part of an answer key (YAML); ``results``: :func:`results_json` of the derivation,
+    when the caller has it already."""
     import yaml
 
-    from tutgen.render.jsonout import derivation_to_json
-
-    results = derivation_to_json(derivation)["results"]
+    results = results if results is not None else results_json(derivation)
     ne = results.get("newton_euler")
     if isinstance(ne, dict) and "planar" in ne:  # the working of the solution (free bodies in words), not an answer
         results = {**results, "newton_euler": {k: v for k, v in ne.items() if k != "planar"}}
     return yaml.safe_dump(results, sort_keys=False, allow_unicode=True, width=100, default_flow_style=None)
 
 
-def marking_key(derivation: Derivation, stated: Marking | None, spec_name: str) -> str:
+def results_json(derivation: Derivation) -> dict[str, Any]:
+    """``results`` of ``tutgen solve --format json`` (tutgen/render/jsonout.py), without building the
+    document's ``steps``, which no key holds and no result reads: the steps' values and LaTeX were about
+    three quarters of the JSON's time on the tutorial."""
+    import dataclasses
+
+    from tutgen.render.jsonout import derivation_to_json
+
+    return dict(derivation_to_json(dataclasses.replace(derivation, steps=()))["results"])
+
+
+def marking_key(
+    derivation: Derivation, stated: Marking | None, spec_name: str, results: dict[str, Any] | None = None
+) -> str:
     """The marking key of one problem of one variant (``tutgen check --key``, docs/check.md): the
     sheet's or the problem's ``marking:``, else the spec's; the items asked (when none is stated, those
     derived from the spec's ``ask``, so that the key says what is graded), and the significant figures
@@ -155,7 +179,6 @@ def marking_key(derivation: Derivation, stated: Marking | None, spec_name: str) 
     import yaml
 
     from tutgen.check.verdicts import PRINTED_FIGURES, derived_ask
-    from tutgen.render.jsonout import derivation_to_json
     from tutgen.spec.builders.marking import marking_data
 
     system = derivation.system
@@ -163,7 +186,8 @@ def marking_key(derivation: Derivation, stated: Marking | None, spec_name: str) 
     data = marking_data(marking) if marking is not None else {}
     note = "as the sheet or the spec states it"
     if "ask" not in data:
-        data = {"ask": list(derived_ask(system, derivation_to_json(derivation)["results"])), **data}
+        results = results if results is not None else results_json(derivation)
+        data = {"ask": list(derived_ask(system, results)), **data}
         note = "the items derived from the spec's ask (no marking: states them)"
     data.setdefault("significant_figures", system.significant_figures or PRINTED_FIGURES)
     head = (
