@@ -213,3 +213,14 @@ def test_json_large_puma_program_equals_expanded_sympy_form(puma):
     values = _state(system, random.Random(6))
     _, c, _ = _run_program(doc["results"]["program"], _names(system), values)
     assert _close(c, _numbers(d.coriolis_vector, values)[:, 0])
+
+
+def test_json_large_fits_the_solution_schema(planar9):
+    """The program-only document is a valid solution JSON (schemas/solution.schema.json)."""
+    from tests.test_schemas import errors
+
+    _, _, doc = planar9
+    assert errors("solution", json.loads(json.dumps(doc))) == []
+    broken = json.loads(json.dumps(doc))
+    broken["results"]["expanded"] = "no"
+    assert errors("solution", broken) != []
