@@ -224,3 +224,17 @@ def test_json_large_fits_the_solution_schema(planar9):
     broken = json.loads(json.dumps(doc))
     broken["results"]["expanded"] = "no"
     assert errors("solution", broken) != []
+
+
+@pytest.mark.slow
+def test_json_large_is_the_same_under_any_hash_seed(tmp_path):
+    """Two fresh processes with PYTHONHASHSEED 0 and 1 write the same bytes for planar-9's program-only
+    JSON (the definitions' order and text do not depend on hashing)."""
+    spec = tmp_path / "planar-9.yaml"
+    spec.write_text(planar_chain(9))
+    outs = []
+    for seed in ("0", "1"):
+        env = {**os.environ, "PYTHONPATH": str(ROOT), "PYTHONHASHSEED": seed}
+        cmd = [sys.executable, "-m", "tutgen", "solve", str(spec), "-f", "json"]
+        outs.append(subprocess.run(cmd, capture_output=True, env=env, check=True, cwd=tmp_path).stdout)
+    assert outs[0] == outs[1] and b'"expanded": false' in outs[0]
