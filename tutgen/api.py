@@ -56,22 +56,26 @@ def check(spec: str | Path, answers: Sequence[str | Path], **options: object) ->
     return check_files(spec, answers, **options)  # type: ignore[arg-type]
 
 
-def render(derivation: object, fmt: str = "md", template_dir: Path | None = None) -> str | bytes:
+def render(
+    derivation: object, fmt: str = "md", template_dir: Path | None = None, *, expand: bool = False
+) -> str | bytes:
     """Render one derivation in a format: 'md', 'tex', 'json' give text, 'pdf' gives bytes
     (the 'tex' document compiled with latexmk; :class:`tutgen.render.pdf.PdfError` if it cannot be).
-    An error in a user's template (``template_dir``) is a :class:`~tutgen.errors.TemplateError`."""
+    An error in a user's template (``template_dir``) is a :class:`~tutgen.errors.TemplateError`.
+    ``expand``: the JSON of a large serial arm with its entries written out, not only its program
+    (``tutgen solve --expand``, docs/json-output.md#the-program-of-a-serial-arm)."""
     with user_template_errors(template_dir):
-        return _render(derivation, fmt, template_dir)
+        return _render(derivation, fmt, template_dir, expand)
 
 
-def _render(derivation: object, fmt: str, template_dir: Path | None) -> str | bytes:
+def _render(derivation: object, fmt: str, template_dir: Path | None, expand: bool = False) -> str | bytes:
     from tutgen.engine.derivation import Derivation
 
     assert isinstance(derivation, Derivation)
     if fmt == "json":
         from tutgen.render.jsonout import derivation_to_json, dumps
 
-        return dumps(derivation_to_json(derivation))
+        return dumps(derivation_to_json(derivation, expand=expand))
     if fmt in ("tex", "pdf"):
         from tutgen.render.latex import render_latex
 
@@ -151,8 +155,10 @@ def solve_and_derive(
     method: str | None = None,
     template_dir: Path | None = None,
     timeout: float | None = None,
+    expand: bool = False,
 ) -> tuple[list[str | bytes], list[Derivation]]:
-    """:func:`solve_specs`, and the derivations it rendered (for :func:`figure_files`)."""
+    """:func:`solve_specs`, and the derivations it rendered (for :func:`figure_files`); ``expand`` as
+    in :func:`render`."""
     from tutgen.engine.pipeline import derive_with_deadline
     from tutgen.limits import deadline, stage
     from tutgen.spec.validate import load_system
@@ -179,7 +185,7 @@ def solve_and_derive(
         texts = []
         for path, d in zip(paths, derivations, strict=True):
             stage("rendering", f"{path.name} as {fmt}")
-            texts.append(render(d, fmt, template_dir))
+            texts.append(render(d, fmt, template_dir, expand=expand))
         return texts, derivations
 
 

@@ -302,6 +302,25 @@ STEADY_MOTION = {
     },
     "required": ["cyclic", "rates", "free", "others", "held", "residual", "method", "states"],
 }
+PROGRAM = {
+    "type": "object",
+    "description": "A serial arm's H, C q_dot and G as a straight-line program (issue 17): the definitions "
+    "in evaluation order, each using only earlier names, then the three matrices in terms of them.",
+    "properties": {
+        "definitions": {
+            "type": "array",
+            "items": {
+                "type": "object",
+                "properties": {"name": {"type": "string"}, "value": VALUE},
+                "required": ["name", "value"],
+            },
+        },
+        "mass_matrix": MATRIX,
+        "coriolis_vector": VECTOR,
+        "gravity_vector": VECTOR,
+    },
+    "required": ["definitions", "mass_matrix", "coriolis_vector", "gravity_vector"],
+}
 RESULTS = {
     "type": "object",
     "properties": {
@@ -329,6 +348,13 @@ RESULTS = {
         "equations_of_motion": VECTOR,
         "christoffel": SYMBOLS,
         "christoffel_first_kind": SYMBOLS,
+        "program": PROGRAM,
+        "expanded": {
+            "type": "boolean",
+            "description": "With program: false when the entries written out (mass_matrix, coriolis_vector, "
+            "christoffel, ...) are left out for their size (tutgen solve --expand writes them).",
+        },
+        "expanded_note": {"type": "string", "description": "With expanded false: why, in words."},
         "newton_euler": NEWTON_EULER,
         "equilibria": EQUILIBRIA,
         "linearization": {"type": "array", "items": LINEAR_MODEL},

@@ -83,6 +83,15 @@ def solve(
             show_default=False,
         ),
     ] = None,
+    expand: Annotated[
+        bool,
+        typer.Option(
+            "--expand",
+            help="JSON: also write out the entries of H, C, G, the equations of motion and the Christoffel "
+            "symbols of a serial arm too large for them (by default its JSON gives them as results.program, "
+            "with results.expanded false). Slow: tens of seconds for a fully symbolic 6-DOF arm.",
+        ),
+    ] = False,
     quiet: Quiet = False,
 ) -> None:
     """Derive the worked solution of each SPEC and write it as Markdown, LaTeX, PDF or JSON.
@@ -109,7 +118,7 @@ def solve(
                 refuse_unnamed("-", "each file in -o DIR is named after its spec")
         plan_outputs(specs, output, format.value, force=force)  # refuse early, before the slow part
     chosen = method.value if method is not None else None
-    texts, derivations = solve_and_derive(specs, format.value, chosen, template_dir, timeout=timeout)
+    texts, derivations = solve_and_derive(specs, format.value, chosen, template_dir, timeout=timeout, expand=expand)
     if to_stdout:  # Markdown's figures are files beside the .md: on stdout the text alone, as always
         text = texts[0]
         if isinstance(text, bytes):

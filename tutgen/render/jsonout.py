@@ -21,8 +21,10 @@ from tutgen.engine.serial import LARGE
 from tutgen.engine.steps import Step
 from tutgen.figure.view import figure_json
 from tutgen.model.system import Ask
+from tutgen.render.blocks import PRINT_BUDGET, PROGRAM_BUDGET
 from tutgen.render.grammar import grammar_text
 from tutgen.render.sections.newton_euler import free_bodies
+from tutgen.render.size import count_ops_upto
 from tutgen.version import __version__
 
 JSON_FORMAT_VERSION = 1
@@ -58,11 +60,58 @@ def matrix(m: sp.MatrixBase) -> list[Any]:
     return [[value(m[i, j]) for j in range(m.shape[1])] for i in range(m.shape[0])]
 
 
-def derivation_to_json(d: Derivation) -> dict[str, Any]:
-    """The JSON document for one derivation (numeric parameters substituted)."""
+#: a serial arm whose H, C q_dot and G written out have more operations than this together (sympy's
+#: count_ops, counted only up to it) is given in the JSON by ``results.program`` alone unless the entries
+#: are asked for (``tutgen solve --expand``): the worked solution's own threshold for printing the program
+EXPAND_BUDGET = PROGRAM_BUDGET
+
+#: with ``results.expanded`` false, an equation side of a step with more operations than this (what a
+#: worked solution prints whole, tutgen.render.blocks.PRINT_BUDGET) is ``null``, value and LaTeX
+STEP_SIDE_BUDGET = PRINT_BUDGET
+
+#: the keys of ``results`` that hold entries written out: absent when ``results.expanded`` is false
+EXPANDED_KEYS = (
+    "kinetic_energy",
+    "lagrangian",
+    "mass_matrix",
+    "coriolis_vector",
+    "coriolis_matrix",
+    "gravity_vector",
+    "mass_matrix_determinant",
+    "equations_of_motion",
+    "christoffel",
+    "christoffel_first_kind",
+)
+
+NOTE_NOT_EXPANDED = (
+    "Written out, H, C q_dot and G have more than {budget} operations: they are given by results.program "
+    "(the definitions x_k in order, then H, C q_dot and G in terms of them). The entries written out "
+    "(kinetic_energy, lagrangian, mass_matrix, coriolis_vector, coriolis_matrix, gravity_vector, "
+    "equations_of_motion, christoffel, christoffel_first_kind) are left out: tutgen solve --expand writes them."
+)
+
+
+def is_program_only(d: Derivation) -> bool:
+    """Whether the JSON of ``d`` gives H, C q_dot and G by their program alone when not asked to expand
+    them: a serial arm with a program, no springs (the program's G is gravity's), and more than
+    ``EXPAND_BUDGET`` operations written out (a budgeted count: C q_dot is not converted for it)."""
+    if d.program is None or d.system.springs or d.mass_matrix is None:
+        return False
+    parts = [d.mass_matrix, d.coriolis_vector, d.gravity_vector]
+    return count_ops_upto([p for p in parts if p is not None], EXPAND_BUDGET) > EXPAND_BUDGET
+
+
+def derivation_to_json(d: Derivation, expand: bool = True) -> dict[str, Any]:
+    """The JSON document for one derivation (numeric parameters substituted).
+
+    ``expand=False``: a large serial arm (:func:`is_program_only`) gets ``results.program`` and
+    ``results.expanded: false`` instead of the entries written out (:data:`EXPANDED_KEYS`), which are
+    then never converted to sympy nor printed; every other derivation is the same either way."""
     system = d.system
     num = d.numeric
     ask = system.ask
+    written = expand or not is_program_only(d)  # the entries written out (EXPANDED_KEYS)
+    program_only = not written
     results: dict[str, Any] = {}
 
     if Ask.INERTIA in ask and d.inertia:
@@ -107,11 +156,11 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
             results["angular_velocities"] = {k.name: vector(num(k.angular_velocity)) for k in d.kinematics}
             results["speeds_squared"] = {e.name: value(num(e.speed_squared)) for e in d.energies}
             results["body_kinetic_energies"] = {e.name: value(num(e.kinetic)) for e in d.energies}
-        if Ask.KINETIC_ENERGY in ask:
+        if Ask.KINETIC_ENERGY in ask and written:
             results["kinetic_energy"] = value(num(d.kinetic_energy))
         if Ask.POTENTIAL_ENERGY in ask and d.potential_energy is not None:
             results["potential_energy"] = value(num(d.potential_energy))
-        if Ask.LAGRANGIAN in ask and d.lagrangian is not None:
+        if Ask.LAGRANGIAN in ask and d.lagrangian is not None and written:
             results["lagrangian"] = value(num(d.lagrangian))
         if Ask.LAGRANGE_EQUATIONS in ask:
             results["lagrange_terms"] = [
@@ -126,10 +175,10 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
             ]
         if (Ask.EQUATIONS_OF_MOTION in ask or Ask.LAGRANGE_EQUATIONS in ask) and d.generalized_forces is not None:
             results["generalized_forces"] = vector(num(d.generalized_forces))
-        if Ask.MATRIX_FORM in ask or Ask.CHRISTOFFEL in ask:
+        if (Ask.MATRIX_FORM in ask or Ask.CHRISTOFFEL in ask) and written:
             assert d.mass_matrix is not None
             results["mass_matrix"] = matrix(num(d.mass_matrix))
-        if Ask.MATRIX_FORM in ask:
+        if Ask.MATRIX_FORM in ask and written:
             assert d.coriolis_vector is not None and d.coriolis_matrix is not None and d.gravity_vector is not None
             results["coriolis_vector"] = vector(num(d.coriolis_vector))
             results["coriolis_matrix"] = matrix(num(d.coriolis_matrix))
@@ -149,11 +198,14 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
                 for j in rotors
                 if j.coordinate is not None
             }
-        if Ask.EQUATIONS_OF_MOTION in ask and d.equations_of_motion is not None:
+        if Ask.EQUATIONS_OF_MOTION in ask and d.equations_of_motion is not None and written:
             results["equations_of_motion"] = vector(num(d.equations_of_motion))
-        if Ask.MATRIX_FORM in ask and d.program is not None:
+        if d.program is not None and (Ask.MATRIX_FORM in ask or program_only):
             results["program"] = _program(d, num)
-        if Ask.CHRISTOFFEL in ask:
+            results["expanded"] = written  # additive (issue 17): false, the entries are left to the program
+            if not written:
+                results["expanded_note"] = NOTE_NOT_EXPANDED.format(budget=EXPAND_BUDGET)
+        if Ask.CHRISTOFFEL in ask and written:
             large = len(system.coordinates) >= LARGE  # n^3 symbols, most of them zero: nonzero only
             results["christoffel"] = _christoffel(d.christoffel, num, large)
             results["christoffel_first_kind"] = _christoffel(d.christoffel_first_kind, num, large)
@@ -169,7 +221,7 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
         "coordinates": [c.name for c in system.coordinates],
         "parameters": {p.name: (value(p.value) if p.value is not None else None) for p in system.parameters},
         "results": results,
-        "steps": steps_json(d),  # additive: the worked solution's steps, docs/json-output.md#steps
+        "steps": steps_json(d, written),  # additive: the worked solution's steps, docs/json-output.md#steps
         "figure": {**figure_json(system), "free_bodies": _free_bodies(d)},  # additive, docs/json-output.md
         "remarks": list(d.remarks),
         "checks": [{"name": c.name, "passed": c.passed, "detail": c.detail} for c in d.checks],
@@ -268,16 +320,19 @@ def _planar(planar: PlanarNewtonEuler, num: Any) -> dict[str, Any]:
 STEP_LATEX_LIMIT = 20000
 
 
-def steps_json(d: Derivation) -> list[dict[str, Any]]:
+def steps_json(d: Derivation, expanded: bool = True) -> list[dict[str, Any]]:
     """The worked solution's steps in teaching order (tutgen.engine.steps): kind, quantity, why, the
     ids of the steps each depends on, and its equations, each side as a value (like ``results``,
-    parameters with values substituted) and as LaTeX."""
+    parameters with values substituted) and as LaTeX; not ``expanded`` (``results.expanded`` false), a
+    side of more than ``STEP_SIDE_BUDGET`` operations is ``null`` (never converted nor printed)."""
     from tutgen.render.printer import TexPrinter  # the printer of the worked solutions
 
     tex = TexPrinter(d.system)
     num = d.numeric
 
     def side(expr: sp.Basic) -> tuple[Any, str | None]:
+        if not expanded and count_ops_upto([expr], STEP_SIDE_BUDGET) > STEP_SIDE_BUDGET:
+            return None, None
         if isinstance(expr, sp.MatrixBase):
             shown = num(expr)
             data: Any = matrix(shown)

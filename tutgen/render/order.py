@@ -252,6 +252,16 @@ def arranged(expr: sp.Expr, levels: _Levels) -> sp.Expr:
     return result
 
 
+#: a mass's coefficient with more generators than this (symbols and functions of the coordinates) is not
+#: factored in search of a square: sympy's ``factor`` grows fast with them (one coefficient of the symbolic
+#: PUMA's U, 53 generators: 5 s), and a square a teacher writes has a few (p08's: 4, the top's: 6)
+SQUARE_GENERATORS = 24
+
+
+def _generators(expr: sp.Expr) -> int:
+    return len(expr.free_symbols | expr.atoms(sp.Function))
+
+
 def _perfect_squares(expr: sp.Expr, levels: _Levels) -> sp.Expr | None:
     """A configuration-dependent sum with a mass's coefficient a perfect square, printed as the square
     (p08's ``m_1 l_1^2 + m_2 (l_1 + l_2 \\cos\\theta_2)^2``, not its three expanded terms): the terms
@@ -273,7 +283,7 @@ def _perfect_squares(expr: sp.Expr, levels: _Levels) -> sp.Expr | None:
     for mass in sorted(groups, key=lambda m: (m == 1, sp.default_sort_key(m))):
         coefficient = sp.Add(*groups[mass])
         try:
-            factored = sp.factor(coefficient)
+            factored = sp.factor(coefficient) if _generators(coefficient) <= SQUARE_GENERATORS else coefficient
         except (sp.PolynomialError, NotImplementedError):
             factored = coefficient
         sign, body = positive_lead(factored)

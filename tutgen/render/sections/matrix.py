@@ -419,7 +419,8 @@ def program_blocks(d: Derivation, tex: TexPrinter, numeric: Any, size: int, with
                 f"by the recursion that defines them instead: {len(needed)} intermediate quantities $x_k$, "
                 "each from earlier ones (a recursive Newton-Euler pass in the link frames gives $C$ with "
                 "$\\ddot q = 0$ and no gravity, and $G$ with the arm at rest; the composite-rigid-body "
-                "algorithm gives $H$). The JSON output has the entries written out."
+                "algorithm gives $H$). The JSON output gives the same program, and with "
+                "$\\texttt{-{}-expand}$ the entries written out."
             )
         )
     ]
