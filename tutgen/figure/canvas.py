@@ -16,7 +16,7 @@ from collections.abc import Sequence
 import numpy as np
 import sympy as sp
 
-from tutgen.figure.pose import Numbers, Pose, Vec, default_size
+from tutgen.figure.pose import Numbers, Pose, Vec, close_loops, default_size
 from tutgen.figure.scene import Box, Circle, Fill, Point, Polyline, Primitive, Stroke
 from tutgen.figure.texlabel import expr_tex, name_tex, word_tex
 from tutgen.model.figure import FigureConfig, FigureView
@@ -113,8 +113,14 @@ class Canvas:
                 value = 0.6 * self.typical
             table[c.q] = value
             at.append((c.name, value))
-        self.at = at
         self.num = Numbers(table, frozenset(c.q for c in s.coordinates))
+        if s.is_constrained:
+            # the dependent coordinates solved so that the loops close (and a disc's x is R phi)
+            self.num, solved, closed = close_loops(s, self.num)
+            at = [(name, solved.get(name, value)) for name, value in at]
+            if not closed:
+                self.remarks.append("the loop does not close at the drawn sizes: it is drawn open")
+        self.at = at
 
     def _com_only(self) -> frozenset[sp.Basic]:
         """The symbols that place only centres of mass given as unknown points: bodies given by mass
