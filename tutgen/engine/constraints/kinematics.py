@@ -29,6 +29,7 @@ from itertools import combinations
 import mpmath
 import sympy as sp
 
+from tutgen.engine.constraints.positions import LoopAnalysis, loop_analysis
 from tutgen.engine.tidy import tidy
 from tutgen.errors import DerivationError
 from tutgen.model.system import Constraint, ConstraintKind, System
@@ -78,6 +79,9 @@ class ConstraintKinematics:
     positions: tuple[tuple[tuple[int, sp.Expr], ...], ...]
     rates: dict[sp.Symbol, sp.Expr]  # q_dot_d -> B q_dot_i
     is_holonomic: bool  # every constraint is a position constraint
+    # a loop's closed-form position analysis with its two branches (tutgen/engine/constraints/positions.py),
+    # when the position constraints are not linear in q_d but are one planar loop's
+    loop: LoopAnalysis | None = None
 
 
 def _free_values(system: System, rng: random.Random) -> dict[sp.Symbol, mpmath.mpf]:
@@ -363,6 +367,7 @@ def constraint_kinematics(system: System) -> ConstraintKinematics:
         qd[j]: sum((b_mat[r, k] * qd[independent[k]] for k in range(len(independent))), sp.Integer(0))
         for r, j in enumerate(dependent)
     }
+    positions = _solve_positions(functions, system, dependent)
     return ConstraintKinematics(
         constraints=system.constraints,
         functions=tuple(functions),
@@ -373,7 +378,8 @@ def constraint_kinematics(system: System) -> ConstraintKinematics:
         velocity_ratios=sp.ImmutableMatrix(b_mat),
         determinant=det,
         velocity_map=sp.ImmutableMatrix(t_rows),
-        positions=_solve_positions(functions, system, dependent),
+        positions=positions,
         rates=rates,
         is_holonomic=all(c.kind is ConstraintKind.POSITION for c in system.constraints),
+        loop=None if positions else loop_analysis(system, functions, dependent),
     )
