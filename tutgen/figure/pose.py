@@ -213,7 +213,7 @@ def close_loops(system: System, num: Numbers) -> tuple[Numbers, dict[str, float]
             cols.append([(p - q) / (2 * _STEP) for p, q in zip(residual(up), residual(down), strict=True)])
         return [[col[k] for col in cols] for k in range(len(rows))]
 
-    root = damped_gauss_newton(residual, jacobian, [num(c.q) for c in unknowns], tolerance=_CLOSED)
+    root = damped_gauss_newton(residual, jacobian, [num(c.q) for c in unknowns], tolerance=_CLOSED, stall=1e-3)
     if root is None:
         return num, {}, False
     solved = {c.q: float(v) for c, v in zip(unknowns, root, strict=True)}

@@ -140,7 +140,7 @@ def solve_positions(
         return {}
     solver = _Solver(position, fixed, others)
     first = [float(start.get(s, 0.0)) for s in fixed] if start is not None else None
-    root = solver.solve([values[s] for s in others], first)
+    root = solver.solve([values[s] for s in others], first, quick=True)
     if root is None:
         return None
     return {s: float(v) for s, v in zip(fixed, root, strict=True)}
@@ -178,19 +178,22 @@ def damped_gauss_newton(
     start: Sequence[float | mpmath.mpf],
     tolerance: float | mpmath.mpf = _ROOT_TOLERANCE,
     iterations: int = 60,
+    stall: float | None = None,
 ) -> list[mpmath.mpf] | None:
     """A root of ``residual`` (a vector function of k unknowns, with as many components or more) near
     ``start``, by damped Gauss-Newton (Levenberg-Marquardt): each step solves (J^T J + mu I) dx = J^T r, mu
     shrinking after a step that lowers |r| and growing after one that does not. Redundant equations do not
     stop it (the normal equations are damped); inconsistent ones leave a residual, and ``None`` is
     returned, as it is when |r| is not below ``tolerance`` after ``iterations`` steps or an evaluation
-    fails. Works in mpmath's current precision (the callers choose it).
+    fails. With ``stall``, the search also gives up early at a minimum that is not a root: when a step
+    lowers |r| by less than that fraction of it, or the damping has grown past 1e12. Works in mpmath's
+    current precision (the callers choose it).
 
     Examples
     ========
 
     >>> import mpmath
-    >>> root = damped_gauss_newton(lambda x: [x[0] ** 2 - 2], lambda x: [[2 * x[0]]], [1.0])
+    >>> root = damped_gauss_newton(lambda x: [x[0] ** 2 - 2], lambda x: [[2 * x[0]]], [1.0], tolerance=1e-12)
     >>> mpmath.nstr(root[0], 10)
     '1.414213562'
     """
@@ -207,9 +210,13 @@ def damped_gauss_newton(
             trial = x - step
             r_trial = mpmath.matrix(list(residual(list(trial))))
             if mpmath.norm(r_trial) < mpmath.norm(r):
+                if stall is not None and mpmath.norm(r) - mpmath.norm(r_trial) < stall * mpmath.norm(r):
+                    return None
                 x, r, mu = trial, r_trial, mu / 3
             else:
                 mu *= 4
+                if stall is not None and mu > 1e12:
+                    return None
     except (ArithmeticError, ValueError, TypeError, ZeroDivisionError):
         return None
     return None
@@ -227,14 +234,26 @@ class _Solver:
         self.jac = sp.lambdify(args, sp.Matrix(equations).jacobian(list(fixed)).tolist(), modules="mpmath")
 
     def solve(
-        self, rest: Sequence[mpmath.mpf | float], start: Sequence[float] | None = None
+        self,
+        rest: Sequence[mpmath.mpf | float],
+        start: Sequence[float] | None = None,
+        quick: bool = False,
     ) -> list[mpmath.mpf] | None:
+        """A root from ``start``, or from each of the fixed starting points in turn; ``quick``: in double
+        precision, giving up early where there is no root (for the numbers of a figure or a simulation)."""
         k = self.k
-        rest = [mpmath.mpf(v) for v in rest]
         starts = [list(start)] if start is not None else [[s + 0.1 * i for i in range(k)] for s in _STARTS]
-        with mpmath.workdps(30):
+        dps, tolerance = (17, mpmath.mpf("1e-13")) if quick else (30, _ROOT_TOLERANCE)
+        with mpmath.workdps(dps):
+            rest = [mpmath.mpf(v) for v in rest]
             for first in starts:
-                root = damped_gauss_newton(lambda x: self.f(*x, *rest), lambda x: self.jac(*x, *rest), first)
+                root = damped_gauss_newton(
+                    lambda x: self.f(*x, *rest),
+                    lambda x: self.jac(*x, *rest),
+                    first,
+                    tolerance,
+                    stall=1e-3 if quick else None,
+                )
                 if root is not None:
                     return root
         return None
