@@ -282,7 +282,11 @@ def loop_position_analysis(c: SolutionContext, loop: LoopAnalysis) -> list[dict[
         names = sp.symbols("P Q R")
         blocks.append(para(text("that is "), math(f"P \\cos {v.latex} + Q \\sin {v.latex} + R = 0"), text(" with")))
         blocks.append(
-            display(",\\quad ".join(f"{tex(k)} = {tex(num(e))}" for k, e in zip(names, loop.coefficients, strict=True)))
+            display(
+                ",\\quad ".join(
+                    f"{tex(k)} = {_in_order(tex, num(e), qs)}" for k, e in zip(names, loop.coefficients, strict=True)
+                )
+            )
         )
         blocks.append(
             para(
