@@ -30,7 +30,7 @@ from tutgen.engine.constraints.positions import (
 from tutgen.engine.inertia import body_inertia
 from tutgen.engine.kinematics import Kinematics
 from tutgen.model.system import ConstraintKind, System
-from tutgen.spec.validate import load_system
+from tutgen.spec.validate import load_system, load_system_text
 
 FOUR_BAR = SPECS / "examples" / "n-four-bar-crank-rocker.yaml"
 SLIDER_CRANK = SPECS / "examples" / "o-slider-crank.yaml"
@@ -280,3 +280,41 @@ def test_linear_constraints_keep_the_linear_analysis() -> None:
     assert len(ck.positions) == 1
     ((j, e),) = ck.positions[0]
     assert system.coordinates[j].name == "x" and sp.simplify(e - s["R"] * s["phi"]) == 0
+
+
+def test_four_bar_written_the_other_way_names_the_same_assembly() -> None:
+    """The closing pin written from the rocker to the coupler (the loop-closure equations negated) and
+    the rocker's angle listed before the coupler's: the same configuration is named the same assembly,
+    and the closed form still closes the loop."""
+    text = FOUR_BAR.read_text(encoding="utf-8")
+    text = text.replace(
+        "parent: coupler, child: rocker, closes_loop: true, origin: [b, 0, 0], child_origin: [c, 0, 0]",
+        "parent: rocker, child: coupler, closes_loop: true, origin: [c, 0, 0], child_origin: [b, 0, 0]",
+    )
+    text = text.replace("  theta3: {latex: '\\theta_3', description: coupler angle, dimension: angle}\n", "")
+    text = text.replace(
+        "  theta4: {latex: '\\theta_4', description: rocker angle, dimension: angle}\n",
+        "  theta4: {latex: '\\theta_4', description: rocker angle, dimension: angle}\n"
+        "  theta3: {latex: '\\theta_3', description: coupler angle, dimension: angle}\n",
+    )
+    assert "parent: rocker, child: coupler" in text and text.index("theta4: {") < text.index("theta3: {")
+    system = load_system_text(text, "reversed.yaml")
+    kin = Kinematics(system, {bi.name: bi.com for bi in map(body_inertia, system.bodies)})
+    system = with_loop_closures(system, list(kin.bodies.values()))
+    ck = constraint_kinematics(system)
+    loop = ck.loop
+    assert loop is not None and loop.sides
+    ref_system, ref_ck = constrained("four-bar")
+    assert ref_ck.loop is not None
+    s, ref = _symbols(system), _symbols(ref_system)
+    for t2 in (-2.0, 0.4, 2.5):
+        for branch in ref_ck.loop.branches:
+            values = {ref[k]: v for k, v in CRANK_ROCKER.items()} | {ref["theta2"]: t2}
+            here = {q: z.real for q, z in _branch_values(ref_ck.loop, branch, values, ref_system).items()}
+            name = assembly_at(ref_ck.loop, values | here)
+            mine = {s[q.name]: v for q, v in (values | here).items()}
+            assert assembly_at(loop, mine) == name
+            assert branch_at(loop, mine, [x.q for x in system.coordinates]) in (1, -1)
+            assert _four_bar_gap(CRANK_ROCKER, t2, mine[s["theta3"]], mine[s["theta4"]]) == pytest.approx(
+                (0, 0), abs=1e-10
+            )
