@@ -255,6 +255,8 @@ def test_solve_positions_slider_crank() -> None:
     behind = solve_positions(system, ck, values, {s["beta"]: math.pi, s["s"]: -1.0})
     assert behind is not None
     assert behind[s["s"]] == pytest.approx(0.4 * math.cos(0.7) - math.sqrt(1.3**2 - (0.4 * math.sin(0.7)) ** 2))
+    # the spec's own system (a Derivation's, without the loop-closure equations) does as well
+    assert solve_positions(load_system(SLIDER_CRANK), ck, values, {s["beta"]: -0.2, s["s"]: 1.5}) == found
 
 
 def test_a_wrong_closed_form_is_not_kept() -> None:

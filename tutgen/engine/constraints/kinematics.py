@@ -96,18 +96,28 @@ def _numeric(expr: sp.Expr, values: dict[sp.Symbol, mpmath.mpf]) -> sp.Expr:
 
 
 def _position_unknowns(
-    system: System, functions: Sequence[sp.Expr], dependent: Sequence[int]
+    system: System,
+    functions: Sequence[sp.Expr],
+    dependent: Sequence[int],
+    constraints: Sequence[Constraint] | None = None,
 ) -> tuple[list[sp.Expr], list[sp.Symbol], list[sp.Symbol]]:
-    """The position constraints, the coordinates solved from them (the dependent ones they use first, then
-    any other they use: a singular choice of independent coordinates is found after, at a consistent
-    state), and the other symbols they use, sorted."""
+    """The position constraints (``constraints``, default the system's, with their ``functions``), the
+    coordinates solved from them (the dependent ones they use first, then any other they use: a singular
+    choice of independent coordinates is found after, at a consistent state), and the other symbols they
+    use, sorted."""
     coords = system.coordinates
-    position = [f for f, c in zip(functions, system.constraints, strict=True) if c.kind is ConstraintKind.POSITION]
+    cons = system.constraints if constraints is None else constraints
+    position = [f for f, c in zip(functions, cons, strict=True) if c.kind is ConstraintKind.POSITION]
     used = [c.q for c in coords if any(c.q in f.free_symbols for f in position)]
     dep = {coords[i].q for i in dependent}
     fixed = sorted(used, key=lambda s: s not in dep)[: len(position)]
     others = sorted(set().union(*(f.free_symbols for f in position)) - set(fixed), key=sp.default_sort_key)
     return position, fixed, others
+
+
+#: the compiled solver of each ConstraintKinematics solve_positions has seen (kept with it, so that its
+#: id is not reused while the entry lives): a simulation solves the same loop at every initial state
+_SOLVERS: dict[int, tuple[ConstraintKinematics, _Solver | None, list[sp.Symbol], list[sp.Symbol]]] = {}
 
 
 def solve_positions(
@@ -121,8 +131,10 @@ def solve_positions(
     Parameters
     ==========
 
-    system : the constrained system (with its loop-closure equations, as
-        :func:`~tutgen.engine.constraints.loops.with_loop_closures` returns it; ``ck`` is its kinematics)
+    system : the spec's system (``Derivation.system``) or the constrained one (with its loop-closure
+        equations, as :func:`~tutgen.engine.constraints.loops.with_loop_closures` returns it): only its
+        coordinates are read
+    ck : the constraints' kinematics (``Derivation.constraints.kinematics``)
     values : a number for every parameter and independent coordinate the position constraints use
     start : where to start from, for the coordinates solved (missing ones start at 0); the root found is
         the one :func:`damped_gauss_newton` reaches from there, the branch nearest ``start`` in practice.
@@ -135,10 +147,16 @@ def solve_positions(
     ``None`` when no root is found (the loop does not close at these numbers). Empty when the spec has no
     position constraints.
     """
-    position, fixed, others = _position_unknowns(system, ck.functions, ck.dependent)
-    if not position:
+    hit = _SOLVERS.get(id(ck))
+    if hit is None or hit[0] is not ck:
+        position, fixed, others = _position_unknowns(system, ck.functions, ck.dependent, ck.constraints)
+        hit = (ck, _Solver(position, fixed, others) if position else None, fixed, others)
+        while len(_SOLVERS) >= 16:
+            _SOLVERS.pop(next(iter(_SOLVERS)))
+        _SOLVERS[id(ck)] = hit
+    _ck, solver, fixed, others = hit
+    if solver is None:
         return {}
-    solver = _Solver(position, fixed, others)
     first = [float(start.get(s, 0.0)) for s in fixed] if start is not None else None
     root = solver.solve([values[s] for s in others], first, quick=True)
     if root is None:
