@@ -12,6 +12,7 @@ import cmath
 import math
 import random
 from functools import cache
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -25,6 +26,7 @@ from tutgen.engine.constraints.positions import (
     LoopBranch,
     _holds,
     assembly_at,
+    assembly_ranges,
     branch_at,
 )
 from tutgen.engine.inertia import body_inertia
@@ -320,3 +322,61 @@ def test_four_bar_written_the_other_way_names_the_same_assembly() -> None:
             assert _four_bar_gap(CRANK_ROCKER, t2, mine[s["theta3"]], mine[s["theta4"]]) == pytest.approx(
                 (0, 0), abs=1e-10
             )
+
+
+def _reach(n: dict[str, float]) -> list[tuple[float, float]]:
+    """The crank angles (degrees, 0 to 180) where the loop closes, by hand: |A O4|^2 = a^2 + d^2 -
+    2 a d cos(theta2) must lie between (b - c)^2 and (b + c)^2."""
+    a, b, c, d = (n[k] for k in "abcd")
+
+    def angle(distance: float) -> float:
+        cos = (a**2 + d**2 - distance**2) / (2 * a * d)
+        return math.degrees(math.acos(max(-1.0, min(1.0, cos))))
+
+    return [(angle(abs(b - c)), angle(b + c))]
+
+
+@pytest.mark.parametrize(
+    "lengths",
+    [
+        pytest.param(NON_GRASHOF, id="coupler-and-rocker-too-short"),
+        pytest.param({"a": 1.0, "b": 0.4, "c": 1.2, "d": 1.5}, id="too-short-and-too-long"),
+        pytest.param(CRANK_ROCKER, id="crank-rocker"),
+    ],
+)
+def test_four_bar_crank_range_by_hand(lengths: dict[str, float]) -> None:
+    """assembly_ranges against the triangle inequality of A B O4: the full turn for a crank-rocker, and
+    otherwise the angles (mirrored about the ground line) between which |b - c| <= |A O4| <= b + c."""
+    system, ck = constrained("four-bar")
+    loop = ck.loop
+    assert loop is not None
+    s = _symbols(system)
+    ranges = assembly_ranges(loop, {s[k]: v for k, v in lengths.items()})
+    assert ranges is not None
+    if lengths is CRANK_ROCKER:
+        assert ranges == [(-math.pi, math.pi)]
+        return
+    ((lo, hi),) = _reach(lengths)
+    got = sorted((math.degrees(x), math.degrees(y)) for x, y in ranges)
+    upper = [(x, y) for x, y in got if y > 0]
+    assert upper[-1][1] == pytest.approx(hi, abs=1e-6)
+    assert (upper[0][0] if upper[0][0] > 0 else 0.0) == pytest.approx(lo, abs=1e-6)
+    mirrored = [v for x, y in reversed(got) for v in (-y, -x)]
+    assert mirrored == pytest.approx([v for pair in got for v in pair])  # symmetric about theta2 = 0
+
+
+@pytest.mark.slow  # derives a four-bar with numbers (about 12 s)
+def test_four_bar_solution_states_the_crank_range(tmp_path: Path) -> None:
+    """The solution says between which crank angles a linkage that is not a crank-rocker can be assembled."""
+    from tutgen.api import render
+    from tutgen.engine.pipeline import derive
+
+    text = FOUR_BAR.read_text(encoding="utf-8")
+    for name, value in {"a": 1.0, "b": 0.4, "c": 1.2, "d": 1.5}.items():
+        text = text.replace(f"  {name}: {{description:", f"  {name}: {{value: {value}, description:")
+    text = text.replace("figure: {sizes: {a: 0.6, b: 1.6, c: 1.1, d: 1.5, rf: 0.18}}\n", "")
+    md = render(derive(load_system_text(text, "numbers.yaml")), "md")
+    assert isinstance(md, str)
+    ((lo, hi),) = _reach({"a": 1.0, "b": 0.4, "c": 1.2, "d": 1.5})
+    assert f"only for ${-hi:.1f}^\\circ \\le \\theta_2 \\le {-lo:.1f}^\\circ$ and ${lo:.1f}^\\circ" in md
+    assert "The figure shows the open assembly." in md

@@ -31,7 +31,7 @@ import sympy as sp
 from tutgen.engine.tidy import tidy
 from tutgen.model.system import ConstraintKind, System
 
-__all__ = ["LoopAnalysis", "LoopBranch", "assembly_at", "branch_at", "loop_analysis"]
+__all__ = ["LoopAnalysis", "LoopBranch", "assembly_at", "assembly_ranges", "branch_at", "loop_analysis"]
 
 _SEED = 20261202
 _DRAWS = 12  # random numbers at which both branches are checked
@@ -325,3 +325,54 @@ def branch_at(
         if ok:
             return branch.sign
     return None
+
+
+def assembly_ranges(
+    analysis: LoopAnalysis, values: Mapping[sp.Symbol, float], samples: int = 720
+) -> list[tuple[float, float]] | None:
+    """The intervals of a four-bar's crank angle (radians, within [-pi, pi]) where the loop can be
+    assembled (the discriminant is not negative), at numbers for every parameter: ``[(-pi, pi)]`` when
+    the crank turns fully. ``None`` when not a four-bar or a number is missing. Each end is found by
+    bisection between the samples where the discriminant changes sign."""
+    if analysis.crank is None:
+        return None
+    table = {k: sp.Float(v) for k, v in values.items()}
+    expr = analysis.discriminant.xreplace(table)
+    crank = next(iter(expr.free_symbols), None)
+    if len(expr.free_symbols) > 1:
+        return None
+    if crank is None:  # the discriminant does not depend on the crank: all or nothing
+        return [(-math.pi, math.pi)] if float(expr) >= 0 else []
+    f = sp.lambdify([crank], expr, modules="math")
+
+    def ok(t: float) -> bool:
+        return f(t) >= 0
+
+    def edge(lo: float, hi: float) -> float:
+        inside = ok(lo)
+        for _ in range(60):
+            mid = (lo + hi) / 2
+            if ok(mid) == inside:
+                lo = mid
+            else:
+                hi = mid
+        return (lo + hi) / 2
+
+    grid = [-math.pi + 2 * math.pi * k / samples for k in range(samples + 1)]
+    flags = [ok(t) for t in grid]
+    if all(flags):
+        return [(-math.pi, math.pi)]
+    out: list[tuple[float, float]] = []
+    start: float | None = grid[0] if flags[0] else None
+    for k in range(1, len(grid)):
+        if flags[k] and not flags[k - 1]:
+            start = edge(grid[k - 1], grid[k])
+        elif not flags[k] and flags[k - 1] and start is not None:
+            out.append((start, edge(grid[k - 1], grid[k])))
+            start = None
+    if start is not None:
+        out.append((start, grid[-1]))
+    # an interval through the angle pi: one range, from its start to past pi
+    if len(out) > 1 and out[0][0] == grid[0] and out[-1][1] == grid[-1]:
+        out = [(out[-1][0], out[0][1] + 2 * math.pi), *out[1:-1]]
+    return out

@@ -4,11 +4,13 @@ coordinates."""
 
 from __future__ import annotations
 
+import math as math_module
+from math import pi
 from typing import Any
 
 import sympy as sp
 
-from tutgen.engine.constraints.positions import LoopAnalysis, assembly_at, branch_at
+from tutgen.engine.constraints.positions import LoopAnalysis, assembly_at, assembly_ranges, branch_at
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.steps import StepKind
 from tutgen.engine.tidy import tidy
@@ -319,7 +321,7 @@ def loop_position_analysis(c: SolutionContext, loop: LoopAnalysis) -> list[dict[
     blocks += _branch_names(c, loop)
     closes = [text("The loop closes only where "), math(f"{disc_tex} \\ge 0")]
     if four_bar:
-        crank, coupler, rocker, ground = (tex(num(e)) for e in loop.lengths)
+        crank, coupler, rocker, ground = (tex(e) for e in loop.lengths)  # by name, even when given numbers
         closes += [
             text(". By Grashof's condition the crank "),
             math(crank),
@@ -330,6 +332,7 @@ def loop_position_analysis(c: SolutionContext, loop: LoopAnalysis) -> list[dict[
                 "the ground; otherwise it swings between the angles where "
             ),
             math(f"{disc_tex} = 0"),
+            *_crank_range(s, loop),
         ]
     closes += [
         text(". Where "),
@@ -340,6 +343,28 @@ def loop_position_analysis(c: SolutionContext, loop: LoopAnalysis) -> list[dict[
     ]
     blocks.append(para(*closes))
     return blocks
+
+
+def _crank_range(s: System, loop: LoopAnalysis) -> list[dict[str, str]]:
+    """With the spec's numbers for the lengths: whether the crank turns fully, or the crank angles
+    between which the loop can be assembled (degrees)."""
+    values = {p.symbol: float(p.value) for p in s.parameters if p.value is not None and p.value.is_number}
+    ranges = assembly_ranges(loop, values) if loop.crank is not None else None
+    if ranges is None:
+        return []
+    if ranges == [(-pi, pi)]:
+        return [text("; with the lengths given, it turns fully")]
+    crank = s.coordinates[loop.crank].latex
+    spans = [math(f"{_degrees(lo)} \\le {crank} \\le {_degrees(hi)}") for lo, hi in ranges]
+    out: list[dict[str, str]] = [text("; with the lengths given, only for ")]
+    for k, span in enumerate(spans):
+        out += [text(" and " if k == len(spans) - 1 else ", "), span] if k else [span]
+    return out
+
+
+def _degrees(angle: float) -> str:
+    """An angle in degrees, to 0.1 degree, for the text."""
+    return f"{math_module.degrees(angle):.1f}^\\circ"
 
 
 def _branch_names(c: SolutionContext, loop: LoopAnalysis) -> list[dict[str, Any]]:
