@@ -141,3 +141,17 @@ def test_loop_that_cannot_close_is_drawn_open_with_a_remark() -> None:
     system = load_system_text(_NEVER, "never.yaml")
     drawing = draw_system(system)
     assert "the loop does not close at the drawn sizes: it is drawn open" in drawing.remarks
+
+
+def test_crank_that_cannot_reach_its_default_angle_is_drawn_where_the_loop_closes() -> None:
+    """With these sizes the loop closes only for 41.4 <= theta2 <= 64.5 degrees (|A O4| between
+    c - b = 1 and b + c = 1.4): not at the default 40 degrees; the figure is drawn at 60, closed, and
+    says so."""
+    text = _NEVER.replace(
+        "figure: {sizes: {a: 0.3, b: 0.3, c: 0.3, d: 3}}", "figure: {sizes: {a: 1, b: 0.2, c: 1.2, d: 1.5}}"
+    )
+    system = load_system_text(text, "narrow.yaml")
+    builder = _built(system)
+    assert dict(builder.at)["theta2"] == pytest.approx(math.radians(60))
+    assert _gap(builder, "B") < 1e-9
+    assert "the loop does not close at the default theta2: it is drawn at 60 degrees" in builder.remarks

@@ -33,6 +33,9 @@ HEAD = (0.22, 0.08)  # arrow head length, half width (cm)
 #: (cm) along their own axes, one step per joint already there (see Canvas.axis_shift).
 WRIST_STEP = 0.75
 
+#: Angles (degrees) of the first independent coordinate tried when a loop cannot close at its default.
+RETRY_ANGLES = (60, 20, 80, 110, 140, 170, -20, -60, -100, -140)
+
 #: Sign patterns tried for the default relative angles when the first pose makes links overlap.
 POSE_SIGNS = ((1, 1, 1, 1, 1, 1), (1, -1, 1, -1, 1, -1), (1, 1, -1, -1, 1, 1), (-1, 1, 1, -1, -1, 1))
 
@@ -116,11 +119,33 @@ class Canvas:
         self.num = Numbers(table, frozenset(c.q for c in s.coordinates))
         if s.is_constrained:
             # the dependent coordinates solved so that the loops close (and a disc's x is R phi)
-            self.num, solved, closed = close_loops(s, self.num)
-            at = [(name, solved.get(name, value)) for name, value in at]
-            if not closed:
-                self.remarks.append("the loop does not close at the drawn sizes: it is drawn open")
+            at = self._closed(at, given_at)
         self.at = at
+
+    def _closed(self, at: list[tuple[str, float]], given_at: dict[str, float]) -> list[tuple[str, float]]:
+        """The pose with its loops closed (:func:`tutgen.figure.pose.close_loops`). When they cannot close
+        at the default angle of the first independent coordinate (a linkage whose crank cannot turn
+        fully), a few other angles are tried, and the one drawn is remarked on."""
+        s = self.s
+        num, solved, closed = close_loops(s, self.num)
+        # the first independent coordinate (without the list, the first coordinate: the engine keeps the first n - m)
+        listed = [c for c in s.coordinates if c.name in s.independent_coordinates]
+        first = listed[0] if listed else (s.coordinates[0] if s.coordinates else None)
+        if not closed and first is not None and first.name not in given_at and self.is_angle(first):
+            for degrees in RETRY_ANGLES:
+                value = math.radians(degrees)
+                num, solved, closed = close_loops(s, self.num.with_(first.q, value))
+                if closed:
+                    solved = {first.name: value, **solved}
+                    self.remarks.append(
+                        f"the loop does not close at the default {first.name}: it is drawn at {degrees} degrees"
+                    )
+                    break
+        if not closed:
+            self.remarks.append("the loop does not close at the drawn sizes: it is drawn open")
+            return at
+        self.num = num
+        return [(name, solved.get(name, value)) for name, value in at]
 
     def _com_only(self) -> frozenset[sp.Basic]:
         """The symbols that place only centres of mass given as unknown points: bodies given by mass
