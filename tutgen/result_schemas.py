@@ -321,6 +321,69 @@ PROGRAM = {
     },
     "required": ["definitions", "mass_matrix", "coriolis_vector", "gravity_vector"],
 }
+CONSTRAINTS = {
+    "type": "object",
+    "description": "A constrained spec's results (issue 21, docs/constraints.md): the constraints in order (loop "
+    "closures first), A, B, T, det A_d, the position analysis by branch, the multipliers and the reduced equations.",
+    "properties": {
+        "names": {"type": "array", "items": {"type": "string"}},
+        "kinds": {"type": "array", "items": {"enum": ["position", "velocity"]}},
+        "functions": VECTOR,
+        "jacobian": MATRIX,
+        "independent_coordinates": {"type": "array", "items": {"type": "string"}},
+        "dependent_coordinates": {"type": "array", "items": {"type": "string"}},
+        "velocity_ratios": MATRIX,
+        "dependent_determinant": VALUE,
+        "velocity_map": MATRIX,
+        "acceleration_terms": VECTOR,
+        "position_analysis": {
+            "type": "array",
+            "items": {
+                "type": "object",
+                "properties": {
+                    "sign": {"enum": [-1, 0, 1]},
+                    "positions": {"type": "object", "additionalProperties": VALUE},
+                },
+                "required": ["sign", "positions"],
+            },
+        },
+        "multipliers": {"type": "array", "items": {"type": "string"}},
+        "constraint_forces": VECTOR,
+        "multipliers_in_accelerations": VECTOR,
+        "multiplier_values": VECTOR,
+        "reduced": {
+            "type": "object",
+            "properties": {
+                "mass_matrix": MATRIX,
+                "coriolis_vector": VECTOR,
+                "gravity_vector": VECTOR,
+                "generalized_forces": VECTOR,
+                "equations_of_motion": VECTOR,
+                "accelerations": VECTOR,
+            },
+            "required": [
+                "mass_matrix",
+                "coriolis_vector",
+                "gravity_vector",
+                "generalized_forces",
+                "equations_of_motion",
+            ],
+        },
+    },
+    "required": [
+        "names",
+        "kinds",
+        "functions",
+        "jacobian",
+        "independent_coordinates",
+        "dependent_coordinates",
+        "velocity_map",
+        "multipliers",
+        "constraint_forces",
+        "multipliers_in_accelerations",
+        "reduced",
+    ],
+}
 RESULTS = {
     "type": "object",
     "properties": {
@@ -359,6 +422,7 @@ RESULTS = {
         "equilibria": EQUILIBRIA,
         "linearization": {"type": "array", "items": LINEAR_MODEL},
         "momentum": MOMENTUM,
+        "constraints": CONSTRAINTS,
         "steady_motion": STEADY_MOTION,
     },
 }

@@ -487,6 +487,11 @@ def constraint_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
     ck = cd.kinematics
     if kind is StepKind.CONSTRAINTS:
         out = [Equation(_name(f"f_{c.name}"), f) for c, f in zip(ck.constraints, ck.functions, strict=True)]
+        if ck.loop is not None:  # the loop's position analysis: each branch's closed forms (<coordinate>_plus)
+            names = [c.name for c in d.system.coordinates]
+            for b in ck.loop.branches:
+                side = "plus" if b.sign > 0 else "minus"
+                out += [Equation(_name(f"{names[j]}_{side}"), e) for j, e in b.positions]
         return (
             *out,
             *_pairs((_name("A"), ck.jacobian), (_name("B"), ck.velocity_ratios), (_name("T"), ck.velocity_map)),

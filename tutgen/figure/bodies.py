@@ -106,6 +106,9 @@ class BodyDrawing(Canvas):
         for j in self.s.joints:
             if j.kind is JointKind.REVOLUTE and (self.only is None or self.only in (j.parent, j.child)):
                 self.circle(self.P(self.pose.joint_at[j.name]), PIN)
+        for lj in self.s.loop_joints:  # the pin that closes a loop, where its two bodies meet
+            if self.only is None or self.only in (lj.parent, lj.child):
+                self.circle(self.P(self.pose.point(lj.parent, self.num.vec(lj.parent_at))), PIN)
 
     def draw_bodies(self) -> None:
         pose = self.pose

@@ -16,7 +16,7 @@ from collections.abc import Sequence
 import numpy as np
 import sympy as sp
 
-from tutgen.figure.pose import Numbers, Pose, Vec, default_size
+from tutgen.figure.pose import Numbers, Pose, Vec, close_loops, default_size
 from tutgen.figure.scene import Box, Circle, Fill, Point, Polyline, Primitive, Stroke
 from tutgen.figure.texlabel import expr_tex, name_tex, word_tex
 from tutgen.model.figure import FigureConfig, FigureView
@@ -32,6 +32,9 @@ HEAD = (0.22, 0.08)  # arrow head length, half width (cm)
 #: Joints drawn at one page point (a spherical wrist's three) have their marks set this far apart
 #: (cm) along their own axes, one step per joint already there (see Canvas.axis_shift).
 WRIST_STEP = 0.75
+
+#: Angles (degrees) of the first independent coordinate tried when a loop cannot close at its default.
+RETRY_ANGLES = (60, 20, 80, 110, 140, 170, -20, -60, -100, -140)
 
 #: Sign patterns tried for the default relative angles when the first pose makes links overlap.
 POSE_SIGNS = ((1, 1, 1, 1, 1, 1), (1, -1, 1, -1, 1, -1), (1, 1, -1, -1, 1, 1), (-1, 1, 1, -1, -1, 1))
@@ -113,8 +116,36 @@ class Canvas:
                 value = 0.6 * self.typical
             table[c.q] = value
             at.append((c.name, value))
-        self.at = at
         self.num = Numbers(table, frozenset(c.q for c in s.coordinates))
+        if s.is_constrained:
+            # the dependent coordinates solved so that the loops close (and a disc's x is R phi)
+            at = self._closed(at, given_at)
+        self.at = at
+
+    def _closed(self, at: list[tuple[str, float]], given_at: dict[str, float]) -> list[tuple[str, float]]:
+        """The pose with its loops closed (:func:`tutgen.figure.pose.close_loops`). When they cannot close
+        at the default angle of the first independent coordinate (a linkage whose crank cannot turn
+        fully), a few other angles are tried, and the one drawn is remarked on."""
+        s = self.s
+        num, solved, closed = close_loops(s, self.num)
+        # the first independent coordinate (without the list, the first coordinate: the engine keeps the first n - m)
+        listed = [c for c in s.coordinates if c.name in s.independent_coordinates]
+        first = listed[0] if listed else (s.coordinates[0] if s.coordinates else None)
+        if not closed and first is not None and first.name not in given_at and self.is_angle(first):
+            for degrees in RETRY_ANGLES:
+                value = math.radians(degrees)
+                num, solved, closed = close_loops(s, self.num.with_(first.q, value))
+                if closed:
+                    solved = {first.name: value, **solved}
+                    self.remarks.append(
+                        f"the loop does not close at the default {first.name}: it is drawn at {degrees} degrees"
+                    )
+                    break
+        if not closed:
+            self.remarks.append("the loop does not close at the drawn sizes: it is drawn open")
+            return at
+        self.num = num
+        return [(name, solved.get(name, value)) for name, value in at]
 
     def _com_only(self) -> frozenset[sp.Basic]:
         """The symbols that place only centres of mass given as unknown points: bodies given by mass

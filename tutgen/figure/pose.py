@@ -9,7 +9,8 @@ import re
 import numpy as np
 import sympy as sp
 
-from tutgen.model.system import GROUND, Body, JointKind, System
+from tutgen.engine.constraints.kinematics import damped_gauss_newton
+from tutgen.model.system import GROUND, Body, ConstraintKind, JointKind, System
 
 Vec = np.ndarray
 
@@ -137,3 +138,83 @@ def com_local(body: Body, num: Numbers) -> Vec:
         total += m
         acc = acc + m * num.vec(part.at)
     return acc / total if total else np.zeros(3)
+
+
+#: |gap| (drawing units, lengths near 1) below which a loop is drawn closed, and the step of the
+#: finite-difference Jacobian of the gaps
+_CLOSED = 1e-10
+_STEP = 1e-6
+
+
+def _gaps(system: System, num: Numbers) -> list[float]:
+    """The position constraints at ``num``: each loop-closing joint's gap (three world components), then
+    each position constraint of the spec (a velocity constraint does not tie the pose)."""
+    out: list[float] = []
+    if system.loop_joints:
+        pose = Pose(system, num)
+        for joint in system.loop_joints:
+            out += list(
+                pose.point(joint.parent, num.vec(joint.parent_at)) - pose.point(joint.child, num.vec(joint.child_at))
+            )
+    out += [num(c.expression) for c in system.constraints if c.kind is ConstraintKind.POSITION]
+    return out
+
+
+def _moved(num: Numbers, values: dict[sp.Symbol, float]) -> Numbers:
+    for symbol, value in values.items():
+        num = num.with_(symbol, value)
+    return num
+
+
+def close_loops(system: System, num: Numbers) -> tuple[Numbers, dict[str, float], bool]:
+    """The numbers of a pose that satisfies the position constraints (loop-closing joints, and
+    constraints such as rolling's x = R phi), with the independent coordinates kept as drawn.
+
+    The dependent coordinates (those not in ``independent_coordinates``; without that list, the last m,
+    m the count of loop-closure equations and constraints, as the engine takes them) that the gaps depend
+    on are solved by the engine's damped Gauss-Newton (:func:`~tutgen.engine.constraints.kinematics.
+    damped_gauss_newton`) from their default drawing values, so the branch drawn is the one nearest the
+    default pose, the same on every run. Returns the numbers, the values solved (by coordinate name), and
+    whether the loops close (when they cannot at these sizes, the numbers are returned as they were).
+    """
+    coords = system.coordinates
+    gaps = _gaps(system, num)
+    if not gaps:
+        return num, {}, True
+    # each coordinate's column of the gaps' Jacobian: a gap that is zero with a zero row says nothing
+    # (the z of a planar loop); a coordinate with a zero column is not tied (at this pose)
+    columns = []
+    for c in coords:
+        moved = _gaps(system, num.with_(c.q, num(c.q) + _STEP))
+        columns.append([(b - a) / _STEP for a, b in zip(gaps, moved, strict=True)])
+    rows = [k for k in range(len(gaps)) if abs(gaps[k]) > _CLOSED or any(abs(col[k]) > 1e-9 for col in columns)]
+    if system.independent_coordinates:
+        dependent = [c for c in coords if c.name not in system.independent_coordinates]
+    else:
+        m = len([k for k in rows if k < 3 * len(system.loop_joints)]) + len(system.constraints)
+        dependent = list(coords[len(coords) - m :]) if m else []
+    unknowns = [c for c in dependent if any(abs(columns[coords.index(c)][k]) > 1e-9 for k in rows)]
+    if all(abs(gaps[k]) < _CLOSED for k in rows):
+        return num, {}, True
+    if not unknowns:
+        return num, {}, False
+
+    def residual(x: list[object]) -> list[float]:
+        values = _gaps(system, _moved(num, {c.q: float(v) for c, v in zip(unknowns, x, strict=True)}))  # type: ignore[arg-type]
+        return [values[k] for k in rows]
+
+    def jacobian(x: list[object]) -> list[list[float]]:
+        base = [float(v) for v in x]  # type: ignore[arg-type]
+        cols = []
+        for i in range(len(base)):
+            up, down = list(base), list(base)
+            up[i] += _STEP
+            down[i] -= _STEP
+            cols.append([(p - q) / (2 * _STEP) for p, q in zip(residual(up), residual(down), strict=True)])
+        return [[col[k] for col in cols] for k in range(len(rows))]
+
+    root = damped_gauss_newton(residual, jacobian, [num(c.q) for c in unknowns], tolerance=_CLOSED, stall=1e-3)
+    if root is None:
+        return num, {}, False
+    solved = {c.q: float(v) for c, v in zip(unknowns, root, strict=True)}
+    return _moved(num, solved), {c.name: solved[c.q] for c in unknowns}, True

@@ -213,6 +213,10 @@ def derivation_to_json(d: Derivation, expand: bool = True) -> dict[str, Any]:
             results["newton_euler"] = _newton_euler(d.newton_euler, num)
         if d.analysis is not None:  # issue 18: equilibria, linear models, momentum (below)
             results.update(analysis_results(d))
+        if d.constraints is not None:  # additive, issue 21: multipliers, reduced equations (docs/json-output.md)
+            from tutgen.render.sections.constraints import constraints_json
+
+            results["constraints"] = constraints_json(d)
 
     out = {
         "tutgen": __version__,

@@ -15,25 +15,33 @@ coordinate is a unit row and that of a dependent one the row of B.
 
 The numeric checks work at consistent states: random values of the parameters without one (in
 [0.5, 2]) and of the independent coordinates (in [-1.5, 1.5]), the dependent ones then solved from the
-position constraints (mpmath's ``findroot`` from a few starting points). The random numbers are seeded,
+position constraints (:func:`damped_gauss_newton` from a few starting points). The random numbers are seeded,
 so the same spec gives the same states and the same messages.
 """
 
 from __future__ import annotations
 
 import random
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from itertools import combinations
 
 import mpmath
 import sympy as sp
 
+from tutgen.engine.constraints.positions import LoopAnalysis, loop_analysis
 from tutgen.engine.tidy import tidy
 from tutgen.errors import DerivationError
 from tutgen.model.system import Constraint, ConstraintKind, System
 
-__all__ = ["ConstraintKinematics", "State", "consistent_states", "constraint_kinematics"]
+__all__ = [
+    "ConstraintKinematics",
+    "State",
+    "consistent_states",
+    "constraint_kinematics",
+    "damped_gauss_newton",
+    "solve_positions",
+]
 
 _SEED = 20261202
 #: how many random draws of the independent coordinates are tried before a position constraint is said
@@ -42,6 +50,8 @@ _DRAWS = 8
 _STARTS = (0.3, -0.7, 1.3, 2.5, -2.0)
 #: a singular value below this (relative to the largest) makes A rank-deficient
 _RANK_TOLERANCE = 1e-9
+#: |f(q)| below this is a root of the position constraints (at 30 digits)
+_ROOT_TOLERANCE = mpmath.mpf("1e-25")
 
 
 @dataclass(frozen=True)
@@ -69,6 +79,9 @@ class ConstraintKinematics:
     positions: tuple[tuple[tuple[int, sp.Expr], ...], ...]
     rates: dict[sp.Symbol, sp.Expr]  # q_dot_d -> B q_dot_i
     is_holonomic: bool  # every constraint is a position constraint
+    # a loop's closed-form position analysis with its two branches (tutgen/engine/constraints/positions.py),
+    # when the position constraints are not linear in q_d but are one planar loop's
+    loop: LoopAnalysis | None = None
 
 
 def _free_values(system: System, rng: random.Random) -> dict[sp.Symbol, mpmath.mpf]:
@@ -83,6 +96,75 @@ def _numeric(expr: sp.Expr, values: dict[sp.Symbol, mpmath.mpf]) -> sp.Expr:
     return expr.subs(values)
 
 
+def _position_unknowns(
+    system: System,
+    functions: Sequence[sp.Expr],
+    dependent: Sequence[int],
+    constraints: Sequence[Constraint] | None = None,
+) -> tuple[list[sp.Expr], list[sp.Symbol], list[sp.Symbol]]:
+    """The position constraints (``constraints``, default the system's, with their ``functions``), the
+    coordinates solved from them (the dependent ones they use first, then any other they use: a singular
+    choice of independent coordinates is found after, at a consistent state), and the other symbols they
+    use, sorted."""
+    coords = system.coordinates
+    cons = system.constraints if constraints is None else constraints
+    position = [f for f, c in zip(functions, cons, strict=True) if c.kind is ConstraintKind.POSITION]
+    used = [c.q for c in coords if any(c.q in f.free_symbols for f in position)]
+    dep = {coords[i].q for i in dependent}
+    fixed = sorted(used, key=lambda s: s not in dep)[: len(position)]
+    others = sorted(set().union(*(f.free_symbols for f in position)) - set(fixed), key=sp.default_sort_key)
+    return position, fixed, others
+
+
+#: the compiled solver of each ConstraintKinematics solve_positions has seen (kept with it, so that its
+#: id is not reused while the entry lives): a simulation solves the same loop at every initial state
+_SOLVERS: dict[int, tuple[ConstraintKinematics, _Solver | None, list[sp.Symbol], list[sp.Symbol]]] = {}
+
+
+def solve_positions(
+    system: System,
+    ck: ConstraintKinematics,
+    values: Mapping[sp.Symbol, float],
+    start: Mapping[sp.Symbol, float] | None = None,
+) -> dict[sp.Symbol, float] | None:
+    """The dependent coordinates that satisfy the position constraints, numerically.
+
+    Parameters
+    ==========
+
+    system : the spec's system (``Derivation.system``) or the constrained one (with its loop-closure
+        equations, as :func:`~tutgen.engine.constraints.loops.with_loop_closures` returns it): only its
+        coordinates are read
+    ck : the constraints' kinematics (``Derivation.constraints.kinematics``)
+    values : a number for every parameter and independent coordinate the position constraints use
+    start : where to start from, for the coordinates solved (missing ones start at 0); the root found is
+        the one :func:`damped_gauss_newton` reaches from there, the branch nearest ``start`` in practice.
+        Without it a few fixed starting points are tried in turn.
+
+    Returns
+    =======
+
+    The value of every coordinate solved from the position constraints (the dependent ones they use), or
+    ``None`` when no root is found (the loop does not close at these numbers). Empty when the spec has no
+    position constraints.
+    """
+    hit = _SOLVERS.get(id(ck))
+    if hit is None or hit[0] is not ck:
+        position, fixed, others = _position_unknowns(system, ck.functions, ck.dependent, ck.constraints)
+        hit = (ck, _Solver(position, fixed, others) if position else None, fixed, others)
+        while len(_SOLVERS) >= 16:
+            _SOLVERS.pop(next(iter(_SOLVERS)))
+        _SOLVERS[id(ck)] = hit
+    _ck, solver, fixed, others = hit
+    if solver is None:
+        return {}
+    first = [float(start.get(s, 0.0)) for s in fixed] if start is not None else None
+    root = solver.solve([values[s] for s in others], first, quick=True)
+    if root is None:
+        return None
+    return {s: float(v) for s, v in zip(fixed, root, strict=True)}
+
+
 def consistent_states(
     system: System, functions: Sequence[sp.Expr], dependent: Sequence[int], count: int
 ) -> Iterator[State]:
@@ -90,13 +172,7 @@ def consistent_states(
     position constraints cannot be solved at a draw: the caller counts what it got."""
     rng = random.Random(_SEED)
     coords = system.coordinates
-    position = [f for f, c in zip(functions, system.constraints, strict=True) if c.kind is ConstraintKind.POSITION]
-    # the coordinates solved from the position constraints: the dependent ones they use first, then any
-    # other they use (a singular choice of independent coordinates is found after, at a consistent state)
-    used = [c.q for c in coords if any(c.q in f.free_symbols for f in position)]
-    dep = {coords[i].q for i in dependent}
-    fixed = sorted(used, key=lambda s: s not in dep)[: len(position)]
-    others = sorted(set().union(*(f.free_symbols for f in position)) - set(fixed), key=sp.default_sort_key)
+    position, fixed, others = _position_unknowns(system, functions, dependent)
     solver = _Solver(position, fixed, others) if position else None
     found = 0
     for _ in range(_DRAWS * count):
@@ -115,11 +191,60 @@ def consistent_states(
         yield State(values)
 
 
+def damped_gauss_newton(
+    residual: Callable[[list[mpmath.mpf]], Sequence[object]],
+    jacobian: Callable[[list[mpmath.mpf]], Sequence[Sequence[object]]],
+    start: Sequence[float | mpmath.mpf],
+    tolerance: float | mpmath.mpf = _ROOT_TOLERANCE,
+    iterations: int = 60,
+    stall: float | None = None,
+) -> list[mpmath.mpf] | None:
+    """A root of ``residual`` (a vector function of k unknowns, with as many components or more) near
+    ``start``, by damped Gauss-Newton (Levenberg-Marquardt): each step solves (J^T J + mu I) dx = J^T r, mu
+    shrinking after a step that lowers |r| and growing after one that does not. Redundant equations do not
+    stop it (the normal equations are damped); inconsistent ones leave a residual, and ``None`` is
+    returned, as it is when |r| is not below ``tolerance`` after ``iterations`` steps or an evaluation
+    fails. With ``stall``, the search also gives up early at a minimum that is not a root: when a step
+    lowers |r| by less than that fraction of it, or the damping has grown past 1e12. Works in mpmath's
+    current precision (the callers choose it).
+
+    Examples
+    ========
+
+    >>> import mpmath
+    >>> root = damped_gauss_newton(lambda x: [x[0] ** 2 - 2], lambda x: [[2 * x[0]]], [1.0], tolerance=1e-12)
+    >>> mpmath.nstr(root[0], 10)
+    '1.414213562'
+    """
+    k = len(start)
+    x = mpmath.matrix([mpmath.mpf(v) for v in start])
+    mu = mpmath.mpf("1e-3")
+    try:
+        r = mpmath.matrix(list(residual(list(x))))
+        for _ in range(iterations):
+            if mpmath.norm(r) < tolerance:
+                return [mpmath.mpf(mpmath.re(v)) for v in x]
+            j = mpmath.matrix([list(row) for row in jacobian(list(x))])
+            step = mpmath.lu_solve(j.T * j + mu * mpmath.eye(k), j.T * r)
+            trial = x - step
+            r_trial = mpmath.matrix(list(residual(list(trial))))
+            if mpmath.norm(r_trial) < mpmath.norm(r):
+                if stall is not None and mpmath.norm(r) - mpmath.norm(r_trial) < stall * mpmath.norm(r):
+                    return None
+                x, r, mu = trial, r_trial, mu / 3
+            else:
+                mu *= 4
+                if stall is not None and mu > 1e12:
+                    return None
+    except (ArithmeticError, ValueError, TypeError, ZeroDivisionError):
+        return None
+    return None
+
+
 class _Solver:
     """A root of the position constraints in ``fixed`` for given values of ``others`` (as many equations as
-    unknowns, or more when some are redundant), by damped Gauss-Newton (Levenberg-Marquardt) from a few
-    starting points. Redundant equations do not stop it (the normal equations are damped); inconsistent
-    ones leave a residual, and no root is returned."""
+    unknowns, or more when some are redundant), by :func:`damped_gauss_newton` from a few starting points
+    (or from the one given)."""
 
     def __init__(self, equations: Sequence[sp.Expr], fixed: Sequence[sp.Symbol], others: Sequence[sp.Symbol]) -> None:
         args = [*fixed, *others]
@@ -127,27 +252,29 @@ class _Solver:
         self.f = sp.lambdify(args, list(equations), modules="mpmath")
         self.jac = sp.lambdify(args, sp.Matrix(equations).jacobian(list(fixed)).tolist(), modules="mpmath")
 
-    def solve(self, rest: list[mpmath.mpf]) -> list[mpmath.mpf] | None:
+    def solve(
+        self,
+        rest: Sequence[mpmath.mpf | float],
+        start: Sequence[float] | None = None,
+        quick: bool = False,
+    ) -> list[mpmath.mpf] | None:
+        """A root from ``start``, or from each of the fixed starting points in turn; ``quick``: in double
+        precision, giving up early where there is no root (for the numbers of a figure or a simulation)."""
         k = self.k
-        with mpmath.workdps(30):
-            for start in _STARTS:
-                x = mpmath.matrix([start + 0.1 * i for i in range(k)])
-                mu = mpmath.mpf("1e-3")
-                try:
-                    r = mpmath.matrix(self.f(*x, *rest))
-                    for _ in range(60):
-                        if mpmath.norm(r) < mpmath.mpf("1e-25"):
-                            return [mpmath.mpf(mpmath.re(v)) for v in x]
-                        j = mpmath.matrix(self.jac(*x, *rest))
-                        step = mpmath.lu_solve(j.T * j + mu * mpmath.eye(k), j.T * r)
-                        trial = x - step
-                        r_trial = mpmath.matrix(self.f(*trial, *rest))
-                        if mpmath.norm(r_trial) < mpmath.norm(r):
-                            x, r, mu = trial, r_trial, mu / 3
-                        else:
-                            mu *= 4
-                except (ArithmeticError, ValueError, TypeError, ZeroDivisionError):
-                    continue
+        starts = [list(start)] if start is not None else [[s + 0.1 * i for i in range(k)] for s in _STARTS]
+        dps, tolerance = (17, mpmath.mpf("1e-13")) if quick else (30, _ROOT_TOLERANCE)
+        with mpmath.workdps(dps):
+            rest = [mpmath.mpf(v) for v in rest]
+            for first in starts:
+                root = damped_gauss_newton(
+                    lambda x: self.f(*x, *rest),
+                    lambda x: self.jac(*x, *rest),
+                    first,
+                    tolerance,
+                    stall=1e-3 if quick else None,
+                )
+                if root is not None:
+                    return root
         return None
 
 
@@ -278,6 +405,7 @@ def constraint_kinematics(system: System) -> ConstraintKinematics:
         qd[j]: sum((b_mat[r, k] * qd[independent[k]] for k in range(len(independent))), sp.Integer(0))
         for r, j in enumerate(dependent)
     }
+    positions = _solve_positions(functions, system, dependent)
     return ConstraintKinematics(
         constraints=system.constraints,
         functions=tuple(functions),
@@ -288,7 +416,8 @@ def constraint_kinematics(system: System) -> ConstraintKinematics:
         velocity_ratios=sp.ImmutableMatrix(b_mat),
         determinant=det,
         velocity_map=sp.ImmutableMatrix(t_rows),
-        positions=_solve_positions(functions, system, dependent),
+        positions=positions,
         rates=rates,
         is_holonomic=all(c.kind is ConstraintKind.POSITION for c in system.constraints),
+        loop=None if positions else loop_analysis(system, functions, dependent),
     )

@@ -4,13 +4,20 @@ coordinates."""
 
 from __future__ import annotations
 
+import math as math_module
+from math import pi
 from typing import Any
 
 import sympy as sp
 
+from tutgen.engine.constraints.positions import LoopAnalysis, assembly_at, assembly_ranges, branch_at
+from tutgen.engine.derivation import Derivation
 from tutgen.engine.steps import StepKind
-from tutgen.model.system import ConstraintKind
+from tutgen.engine.tidy import tidy
+from tutgen.figure.build import draw_system
+from tutgen.model.system import ConstraintKind, System
 from tutgen.render.blocks import SolutionContext, boxed, display, math, para, section, text
+from tutgen.render.printer import TexPrinter
 
 
 def _vector(names: list[str]) -> str:
@@ -80,6 +87,8 @@ def constraint_kinematics(c: SolutionContext) -> dict[str, Any] | None:
         )
         for branch in ck.positions:
             sec["blocks"].append(display(",\\quad ".join(f"{coords[j].latex} = {tex(num(e))}" for j, e in branch)))
+    elif ck.loop is not None:
+        sec["blocks"] += loop_position_analysis(c, ck.loop)
     elif not ck.is_holonomic and not any(x.kind is ConstraintKind.POSITION for x in ck.constraints):
         sec["blocks"].append(
             para(
@@ -207,3 +216,225 @@ def reduced_equations(c: SolutionContext) -> dict[str, Any] | None:
             )
         )
     return sec
+
+
+def _drawn_values(system: System) -> dict[sp.Symbol, float] | None:
+    """The numbers of the figure at the head of the solution (its sizes and its pose), when it is drawn."""
+    if system.figure is not None and not system.figure.generated:
+        return None
+    drawing = draw_system(system)
+    by_name = {p.name: p.symbol for p in system.parameters} | {x.name: x.q for x in system.coordinates}
+    values: dict[sp.Symbol, float] = {
+        p.symbol: float(p.value) for p in system.parameters if p.value is not None and p.value.is_number
+    }
+    for name, value in (*drawing.sizes, *drawing.at):
+        if name in by_name:
+            values[by_name[name]] = value
+    return values
+
+
+def _in_order(tex: TexPrinter, expr: sp.Expr, coordinates: list[sp.Symbol], lead: sp.Symbol | None = None) -> str:
+    """A sum printed as a textbook writes a loop's equation: by descending powers of ``lead`` (a slider's
+    position), then the terms free of the coordinates, then those of one coordinate (in coordinate order),
+    then the rest, each term printed on its own; a long sum, or not a sum, as the printer has it."""
+    expanded = sp.expand(expr) if lead is not None else expr
+    if not isinstance(expanded, sp.Add) or len(expanded.args) > 12:
+        return tex(expr)
+
+    def key(term: sp.Expr) -> tuple[object, ...]:
+        power = sp.degree(term, lead) if lead is not None and term.is_polynomial(lead) else 0
+        used = [i for i, q in enumerate(coordinates) if q in term.free_symbols and q != lead]
+        body = -term if term.could_extract_minus_sign() else term
+        return (-power, len(used), max(used, default=-1), body is not term, sp.default_sort_key(body))
+
+    terms = sorted(expanded.args, key=key)
+    first = next((t for t in terms if not t.could_extract_minus_sign()), terms[0])  # a positive lead
+    terms.remove(first)
+    out = ""
+    for i, term in enumerate([first, *terms]):
+        negative = term.could_extract_minus_sign()
+        body = tex(-term if negative else term)
+        out += ("- " if negative else "") + body if i == 0 else (" - " if negative else " + ") + body
+    return out
+
+
+def loop_position_analysis(c: SolutionContext, loop: LoopAnalysis) -> list[dict[str, Any]]:
+    """The loop's closed-form position analysis (tutgen/engine/constraints/positions.py): the elimination
+    of one link's angle, the equation in the other coordinate, its two roots (the branches, the one the
+    figure shows named), the eliminated angle from it, and where the loop cannot close."""
+    s, tex, num = c.s, c.tex, c.num
+    u, v = s.coordinates[loop.eliminated], s.coordinates[loop.solved]
+    four_bar = bool(loop.sides)
+    qs = [x.q for x in s.coordinates]
+    lead = None if loop.is_angle else v.q
+    blocks: list[dict[str, Any]] = [
+        para(
+            text("Position analysis. The loop-closure equations are linear in "),
+            math(f"\\cos {u.latex}"),
+            text(" and "),
+            math(f"\\sin {u.latex}"),
+            text("; solved for them, "),
+            math(f"\\cos^2 {u.latex} + \\sin^2 {u.latex} = 1"),
+            text(" eliminates "),
+            math(u.latex),
+            text(" (Freudenstein's equation):" if four_bar else ":"),
+        ),
+        display(f"{_in_order(tex, num(loop.elimination), qs, lead)} = 0"),
+    ]
+    if loop.is_angle:
+        names = sp.symbols("P Q R")
+        blocks.append(para(text("that is "), math(f"P \\cos {v.latex} + Q \\sin {v.latex} + R = 0"), text(" with")))
+        blocks.append(
+            display(
+                ",\\quad ".join(
+                    f"{tex(k)} = {_in_order(tex, num(e), qs)}" for k, e in zip(names, loop.coefficients, strict=True)
+                )
+            )
+        )
+        blocks.append(
+            para(
+                text("With "),
+                math(f"t = \\tan\\tfrac{{{v.latex}}}{{2}}"),
+                text(", "),
+                math(f"\\cos {v.latex} = \\frac{{1 - t^2}}{{1 + t^2}}"),
+                text(" and "),
+                math(f"\\sin {v.latex} = \\frac{{2t}}{{1 + t^2}}"),
+                text(", it is the quadratic "),
+                math("(R - P)\\,t^2 + 2Q\\,t + (R + P) = 0"),
+                text(", whose two roots are the loop's two branches:"),
+            )
+        )
+        root = f"{v.latex} = 2 \\operatorname{{atan2}}\\left(-Q \\pm \\sqrt{{P^2 + Q^2 - R^2}},\\ R - P\\right)"
+        disc_tex = "P^2 + Q^2 - R^2"
+    else:
+        p_, q_, _r = loop.coefficients
+        centre = tidy(sp.simplify(-q_ / (2 * p_)))
+        blocks.append(
+            para(text("a quadratic in "), math(v.latex), text(", whose two roots are the loop's two branches:"))
+        )
+        root = f"{v.latex} = {tex(num(centre))} \\pm {tex(num(sp.sqrt(loop.discriminant)))}"
+        disc_tex = tex(num(loop.discriminant))
+    y, x = loop.eliminated_value.args
+    y, x = (_in_order(tex, num(e), qs, lead) for e in (y, x))
+    eliminated = f"{u.latex} = \\operatorname{{atan2}}\\left({y},\\ {x}\\right)"
+    blocks.append(boxed(f"{root},\\quad {eliminated}"))
+    blocks += _branch_names(c, loop)
+    closes = [text("The loop closes only where "), math(f"{disc_tex} \\ge 0")]
+    if four_bar:
+        crank, coupler, rocker, ground = (tex(e) for e in loop.lengths)  # by name, even when given numbers
+        closes += [
+            text(". By Grashof's condition the crank "),
+            math(crank),
+            text(" turns fully when the shortest of "),
+            math(f"{crank}, {coupler}, {rocker}, {ground}"),
+            text(
+                " plus the longest is at most the sum of the other two, and the shortest is the crank or "
+                "the ground; otherwise it swings between the angles where "
+            ),
+            math(f"{disc_tex} = 0"),
+            *_crank_range(s, loop),
+        ]
+    closes += [
+        text(". Where "),
+        math(f"{disc_tex} = 0"),
+        text(" the two branches meet and "),
+        math("\\det A_d = 0"),
+        text(": a dead point."),
+    ]
+    blocks.append(para(*closes))
+    return blocks
+
+
+def _crank_range(s: System, loop: LoopAnalysis) -> list[dict[str, str]]:
+    """With the spec's numbers for the lengths: whether the crank turns fully, or the crank angles
+    between which the loop can be assembled (degrees)."""
+    values = {p.symbol: float(p.value) for p in s.parameters if p.value is not None and p.value.is_number}
+    ranges = assembly_ranges(loop, values) if loop.crank is not None else None
+    if ranges is None:
+        return []
+    if ranges == [(-pi, pi)]:
+        return [text("; with the lengths given, it turns fully")]
+    crank = s.coordinates[loop.crank].latex
+    spans = [math(f"{_degrees(lo)} \\le {crank} \\le {_degrees(hi)}") for lo, hi in ranges]
+    out: list[dict[str, str]] = [text("; with the lengths given, only for ")]
+    for k, span in enumerate(spans):
+        out += [text(" and " if k == len(spans) - 1 else ", "), span] if k else [span]
+    return out
+
+
+def _degrees(angle: float) -> str:
+    """An angle in degrees, to 0.1 degree, for the text."""
+    return f"{math_module.degrees(angle):.1f}^\\circ"
+
+
+def _branch_names(c: SolutionContext, loop: LoopAnalysis) -> list[dict[str, Any]]:
+    """Which sign is which assembly (a four-bar's open and crossed), and the one the figure shows."""
+    s = c.s
+    values = _drawn_values(s)
+    if values is None:
+        return []
+    sign = branch_at(loop, values, [x.q for x in s.coordinates])
+    if sign is None:
+        return []
+    word = {1: "+", -1: "−"}
+    shape = assembly_at(loop, values)
+    if shape is None:
+        return [para(text(f"The figure shows the branch with the {word[sign]} sign."))]
+    other = "crossed" if shape == "open" else "open"
+    return [
+        para(
+            text(
+                f"The {word[sign]} sign gives the {shape} assembly of the loop and the {word[-sign]} sign the "
+                f"{other} one, its mirror image about the line through the coupler's pin and the rocker's "
+                f"fixed pivot; each keeps its name along the motion, for the two meet only at a dead point. "
+                f"The figure shows the {shape} assembly."
+            )
+        )
+    ]
+
+
+def constraints_json(d: Derivation) -> dict[str, Any] | None:
+    """The constrained results for the JSON output's ``results.constraints`` (docs/json-output.md): the
+    constraints, A, B, T and det A_d, the position analysis, the multipliers and the reduced equations;
+    ``None`` for a spec without constraints. Numeric parameters substituted, as in every result."""
+    from tutgen.render.jsonout import matrix, value, vector  # the JSON value shapes (jsonout imports us)
+
+    cd = d.constraints
+    if cd is None:
+        return None
+    ck = cd.kinematics
+    num = d.numeric
+    names = [x.name for x in d.system.coordinates]
+    out: dict[str, Any] = {
+        "names": [con.name for con in ck.constraints],
+        "kinds": [con.kind.value for con in ck.constraints],
+        "functions": [value(num(f)) for f in ck.functions],
+        "jacobian": matrix(num(ck.jacobian)),
+        "independent_coordinates": [names[j] for j in ck.independent],
+        "dependent_coordinates": [names[j] for j in ck.dependent],
+        "velocity_ratios": matrix(num(ck.velocity_ratios)),
+        "dependent_determinant": value(num(ck.determinant)),
+        "velocity_map": matrix(num(ck.velocity_map)),
+        "acceleration_terms": vector(num(ck.bias)),
+    }
+    if ck.positions or ck.loop is not None:
+        branches = [(0, ck.positions[0])] if ck.positions else [(b.sign, b.positions) for b in ck.loop.branches]  # type: ignore[union-attr]
+        out["position_analysis"] = [
+            {"sign": sign, "positions": {names[j]: value(num(e)) for j, e in positions}} for sign, positions in branches
+        ]
+    out["multipliers"] = [str(lam) for lam in cd.multipliers]
+    out["constraint_forces"] = vector(num(cd.constraint_forces))
+    out["multipliers_in_accelerations"] = [value(num(e)) for e in cd.multipliers_in_accelerations]
+    if cd.multiplier_values:
+        out["multiplier_values"] = [value(num(e)) for e in cd.multiplier_values]
+    reduced: dict[str, Any] = {
+        "mass_matrix": matrix(num(cd.mass_matrix)),
+        "coriolis_vector": vector(num(cd.coriolis_vector)),
+        "gravity_vector": vector(num(cd.gravity_vector)),
+        "generalized_forces": vector(num(cd.generalized_forces)),
+        "equations_of_motion": vector(num(cd.equations_of_motion)),
+    }
+    if cd.accelerations:
+        reduced["accelerations"] = [value(num(e)) for e in cd.accelerations]
+    out["reduced"] = reduced
+    return out
