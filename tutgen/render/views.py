@@ -30,6 +30,7 @@ from tutgen.render.sections.lagrange import equations_of_motion, lagrange_equati
 from tutgen.render.sections.matrix import christoffel_symbols, matrix_form
 from tutgen.render.sections.momentum import momentum
 from tutgen.render.sections.newton_euler import newton_euler
+from tutgen.render.sections.prescribed import drive_force, prescribed_motion
 from tutgen.render.sections.simulation import simulation
 from tutgen.render.wording import engine_parts
 from tutgen.spec.units import decimal_text, in_unit
@@ -55,6 +56,8 @@ BUILDERS: dict[StepKind, tuple[Builder, ...]] = {
     StepKind.MATRIX_FORM: (arm_table, matrix_form),
     StepKind.MASS_MATRIX_DERIVATIVES: (christoffel_symbols,),
     StepKind.CHRISTOFFEL: (christoffel_symbols,),
+    StepKind.PRESCRIBED_MOTION: (prescribed_motion,),
+    StepKind.DRIVE_FORCE: (drive_force,),
     StepKind.SIMULATION: (simulation,),
     StepKind.EQUILIBRIA: (equilibria,),
     StepKind.LINEARIZATION: (linearization,),
