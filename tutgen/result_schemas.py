@@ -264,6 +264,35 @@ MOMENTUM = {
     },
     "required": ["bodies", "linear", "angular_origin", "angular_origin_rate", "support_moment", "conserved"],
 }
+#: the driven coordinates (`prescribed:`, `rate:`; docs/json-output.md#prescribed)
+PRESCRIBED = {
+    "type": "object",
+    "properties": {
+        "coordinates": {
+            "type": "object",
+            "additionalProperties": {
+                "type": "object",
+                "properties": {
+                    "motion": VALUE,
+                    "rate": VALUE,
+                    "acceleration": VALUE,
+                    "kind": {"enum": ["torque", "force", "generalized force"]},
+                    "drive": VALUE,
+                    "drive_along_motion": VALUE,
+                },
+                "required": ["motion", "rate", "acceleration", "kind", "drive"],
+            },
+        },
+        "free_coordinates": {"type": "array", "items": {"type": "string"}},
+        "mass_matrix": MATRIX,
+        "coriolis_vector": VECTOR,
+        "gravity_vector": VECTOR,
+        "driving_vector": VECTOR,
+        "generalized_forces": VECTOR,
+        "equations_of_motion": VECTOR,
+    },
+    "required": ["coordinates", "free_coordinates", "equations_of_motion"],
+}
 RESULTS = {
     "type": "object",
     "properties": {
@@ -295,6 +324,7 @@ RESULTS = {
         "equilibria": EQUILIBRIA,
         "linearization": {"type": "array", "items": LINEAR_MODEL},
         "momentum": MOMENTUM,
+        "prescribed": PRESCRIBED,
     },
 }
 FIGURE = {

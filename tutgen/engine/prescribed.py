@@ -177,9 +177,9 @@ def prescribed_motion(d: Derivation) -> PrescribedMotion:
             Check(
                 "drive_force_equals_newton_euler",
                 ok,
-                f"the drive on {names} from Newton-Euler's equation along the prescribed motion equals Lagrange's"
+                f"The drive on {names} from the Newton–Euler equation along the prescribed motion equals Lagrange's"
                 if ok
-                else f"the drive on {names} from Newton-Euler's equation DIFFERS from Lagrange's",
+                else f"The drive on {names} from the Newton–Euler equation DIFFERS from Lagrange's",
             )
         )
     for check in checks:
@@ -210,7 +210,9 @@ def _reduced_lagrangian_check(
     name = "prescribed_equals_reduced_lagrangian"
     lagrangian, q_vec = d.lagrangian, d.generalized_forces
     if lagrangian is None or q_vec is None or sp.count_ops(eom_f) > _CHECK_OPS:
-        return Check(name, True, "the free equations not compared with the substituted Lagrangian's: too long")
+        return Check(
+            name, True, "The free coordinates' equations not compared with the substituted Lagrangian's: too long"
+        )
     coords = d.system.coordinates
     q = [coords[i].q for i in free]
     qd = [coords[i].qd for i in free]
@@ -225,9 +227,9 @@ def _reduced_lagrangian_check(
     return Check(
         name,
         ok,
-        "the free coordinates' equations equal Lagrange's equations of the Lagrangian with the motion substituted"
+        "The free coordinates' equations equal Lagrange's equations of the Lagrangian with the motion substituted"
         if ok
-        else "the free coordinates' equations DIFFER from Lagrange's equations of the substituted Lagrangian",
+        else "The free coordinates' equations DIFFER from Lagrange's equations of the substituted Lagrangian",
     )
 
 

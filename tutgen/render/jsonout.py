@@ -161,6 +161,8 @@ def derivation_to_json(d: Derivation) -> dict[str, Any]:
             results["newton_euler"] = _newton_euler(d.newton_euler, num)
         if d.analysis is not None:  # issue 18: equilibria, linear models, momentum (below)
             results.update(analysis_results(d))
+        if d.prescribed is not None:  # additive, issue 18.4: docs/json-output.md#prescribed
+            results["prescribed"] = prescribed_results(d)
 
     out = {
         "tutgen": __version__,
@@ -431,3 +433,33 @@ def analysis_results(d: Derivation) -> dict[str, Any]:
             "conserved": [{"name": q.name, "value": value(num(q.value)), "why": q.why} for q in mo.conserved],
         }
     return out
+
+
+def prescribed_results(d: Derivation) -> dict[str, Any]:
+    """The driven coordinates (tutgen.engine.prescribed): each one's motion and the force or torque that
+    drives it, and the free coordinates' equations with the motion substituted, in matrix form."""
+    pm = d.prescribed
+    assert pm is not None
+    num = d.numeric
+    driven: dict[str, Any] = {}
+    for x in pm.driven:
+        entry = {
+            "motion": value(num(x.motion)),
+            "rate": value(num(x.rate)),
+            "acceleration": value(num(x.acceleration)),
+            "kind": x.kind,
+            "drive": value(num(x.drive)),
+        }
+        if x.drive_along_motion is not None:
+            entry["drive_along_motion"] = value(num(x.drive_along_motion))
+        driven[x.name] = entry
+    return {
+        "coordinates": driven,
+        "free_coordinates": [d.system.coordinates[i].name for i in pm.free],
+        "mass_matrix": matrix(num(pm.mass_matrix)),
+        "coriolis_vector": vector(num(pm.coriolis_vector)),
+        "gravity_vector": vector(num(pm.gravity_vector)),
+        "driving_vector": vector(num(pm.driving_vector)),
+        "generalized_forces": vector(num(pm.generalized_forces)),
+        "equations_of_motion": vector(num(pm.equations_of_motion)),
+    }

@@ -65,8 +65,10 @@ def prescribed_motion(c: SolutionContext) -> dict[str, Any] | None:
         text(f" above become{'s' if one_free else ''} Lagrange's equation{'' if one_free else 's'} of "),
         math(f"L({args})"),
         text(", the Lagrangian with the motion substituted"),
-        text(", with d/dt including its explicit dependence on t:" if pm.is_time_dependent else ":"),
     ]
+    if pm.is_time_dependent:
+        intro += [text(", with "), math("d/dt"), text(" including its explicit dependence on "), math("t")]
+    intro.append(text(":"))
     sec["blocks"].append(para(*intro))
     qdd = [f.qdd for f in free]
     for a in range(len(free)):
@@ -85,9 +87,21 @@ def prescribed_motion(c: SolutionContext) -> dict[str, Any] | None:
             para(
                 text("In matrix form "),
                 math("H_f\\ddot q_f + C_f + G_f + D_f = Q_f"),
-                text(": H, C (the free rates only), G and Q of the free coordinates with the motion substituted, and "),
+                text(": "),
+                math("H"),
+                text(", "),
+                math("C"),
+                text(" (the free rates only), "),
+                math("G"),
+                text(" and "),
+                math("Q"),
+                text(" of the free coordinates with the motion substituted, and "),
                 math("D_f"),
-                text(" what the driven motion adds (its accelerations in H, its rates in C):"),
+                text(" what the driven motion adds (its accelerations in "),
+                math("H"),
+                text(", its rates in "),
+                math("C"),
+                text("):"),
             )
         )
         sec["blocks"].append(display(",\\quad ".join(f"{n} = {tex(num(v))}" for n, v in rows)))
@@ -119,9 +133,10 @@ def _drive_blocks(c: SolutionContext, x: DrivenCoordinate, free: list[Coordinate
             para(
                 text("With "),
                 *_names([f for f in free if x.drive.has(f.qdd)]),
-                text("'s acceleration from the equations of motion, as a function of the state and t:")
-                if len(free) == 1
-                else text(" accelerations from the equations of motion, as a function of the state and t:"),
+                text("'s acceleration" if len(free) == 1 else " accelerations"),
+                text(" from the equations of motion, as a function of the state and "),
+                math("t"),
+                text(":"),
             )
         )
         blocks.append(boxed(f"{symbol} = {tex.ordered(num(x.drive_along_motion))}"))
