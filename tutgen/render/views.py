@@ -18,7 +18,7 @@ from tutgen.engine.derivation import Derivation
 from tutgen.engine.steps import StepKind
 from tutgen.figure.view import figure_view
 from tutgen.model.system import System
-from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, prose, rich, unit_tex
+from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, prose, rich, text, unit_tex
 from tutgen.render.printer import TexPrinter, is_decimal_document
 from tutgen.render.sections.analysis import equilibria, linearization
 from tutgen.render.sections.arm import arm_table
@@ -106,7 +106,13 @@ def given_items(system: System) -> list[list[Part]]:
 def coordinate_items(system: System) -> list[list[Part]]:
     """Each generalized coordinate with its description."""
     tex = TexPrinter(system)
-    return [[math(c.latex)] + (rich(c.description, tex, ": ") if c.description else []) for c in system.coordinates]
+    items = []
+    for c in system.coordinates:
+        item = [math(c.latex)] + (rich(c.description, tex, ": ") if c.description else [])
+        if c.prescribed is not None:  # a driven coordinate (docs/spec-format.md#prescribed)
+            item += [text(" (prescribed: "), math(f"{c.latex} = {tex(c.prescribed)}"), text(")")]
+        items.append(item)
+    return items
 
 
 def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
