@@ -384,6 +384,35 @@ CONSTRAINTS = {
         "reduced",
     ],
 }
+#: the driven coordinates (`prescribed:`, `rate:`; docs/json-output.md#prescribed)
+PRESCRIBED = {
+    "type": "object",
+    "properties": {
+        "coordinates": {
+            "type": "object",
+            "additionalProperties": {
+                "type": "object",
+                "properties": {
+                    "motion": VALUE,
+                    "rate": VALUE,
+                    "acceleration": VALUE,
+                    "kind": {"enum": ["torque", "force", "generalized force"]},
+                    "drive": VALUE,
+                    "drive_along_motion": VALUE,
+                },
+                "required": ["motion", "rate", "acceleration", "kind", "drive"],
+            },
+        },
+        "free_coordinates": {"type": "array", "items": {"type": "string"}},
+        "mass_matrix": MATRIX,
+        "coriolis_vector": VECTOR,
+        "gravity_vector": VECTOR,
+        "driving_vector": VECTOR,
+        "generalized_forces": VECTOR,
+        "equations_of_motion": VECTOR,
+    },
+    "required": ["coordinates", "free_coordinates", "equations_of_motion"],
+}
 RESULTS = {
     "type": "object",
     "properties": {
@@ -424,6 +453,7 @@ RESULTS = {
         "momentum": MOMENTUM,
         "constraints": CONSTRAINTS,
         "steady_motion": STEADY_MOTION,
+        "prescribed": PRESCRIBED,
     },
 }
 FIGURE = {

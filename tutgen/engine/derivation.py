@@ -24,6 +24,7 @@ if TYPE_CHECKING:  # newton_euler.py imports this module
     from tutgen.engine.constraints import ConstrainedDynamics
     from tutgen.engine.newton_euler import NewtonEuler
     from tutgen.engine.potential import PotentialSource
+    from tutgen.engine.prescribed import PrescribedMotion
     from tutgen.engine.recursive import NestedDynamics
 
 
@@ -106,6 +107,10 @@ class Derivation:
     # the spec's `constraints:`: the equations with Lagrange's multipliers and reduced to the independent
     # coordinates (tutgen.engine.constraints); the fields above are those of the unconstrained coordinates
     constraints: ConstrainedDynamics | None = None
+    # the spec's prescribed coordinates (`prescribed:`, `rate:`): the equations of the free coordinates with
+    # the motion substituted and each drive force (tutgen.engine.prescribed); the fields above are those of
+    # every coordinate as free
+    prescribed: PrescribedMotion | None = None
 
     def has_step(self, kind: str) -> bool:
         """Whether the worked solution has a step of this kind (a :class:`~tutgen.engine.steps.StepKind`)."""

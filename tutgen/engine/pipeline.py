@@ -13,6 +13,8 @@
    dimensions (:mod:`~tutgen.engine.checks`), and the remarks (:mod:`~tutgen.engine.remarks`);
 8. Newton-Euler, checked against Lagrange (:mod:`~tutgen.engine.newton_euler`), whenever the equations of
    motion are derived and the system has bodies; presented only when ``methods`` asks for it;
+8b. a spec's prescribed coordinates substituted: the free coordinates' equations and the drive forces
+   (:mod:`~tutgen.engine.prescribed`);
 9. the step records (:mod:`~tutgen.engine.steps`): which steps ``ask`` and ``methods`` call for, in
    teaching order; the checks about steps not derived are left out.
 
@@ -40,6 +42,7 @@ from tutgen.engine.lazytable import LazyMatrix, LazyTable
 from tutgen.engine.matrix_form import christoffel_symbols, coriolis_terms, equations_of_motion, gravity_vector
 from tutgen.engine.newton_euler import derive_newton_euler
 from tutgen.engine.potential import potential_sources
+from tutgen.engine.prescribed import prescribed_motion
 from tutgen.engine.recursive import nested_dynamics
 from tutgen.engine.remarks import REMARK_CONSTANT_MASS_MATRIX, degeneracy_remarks, rotor_remark, zero_remarks
 from tutgen.engine.serial import REMARK_FAST_PATH, is_large_serial_chain, serial_checks, serial_dynamics
@@ -111,6 +114,8 @@ def derive(system: System, method: str | None = None) -> Derivation:
         d = _serial_route(system, methods, inertia, principal)
     else:
         d = _general_route(system, methods, inertia, principal, {kind for kind, _ in plan})
+    if StepKind.PRESCRIBED_MOTION in {kind for kind, _ in plan} and d.equations_of_motion is not None:
+        d = _prescribed(d)
     if {kind for kind, _ in plan} & {
         StepKind.EQUILIBRIA,
         StepKind.LINEARIZATION,
@@ -149,6 +154,14 @@ def _analysis(d: Derivation, kinds: set[StepKind]) -> Derivation:
     linear = [ch for ch in checks if ch.name != "steady_motion_satisfies_equations"][:1]
     steady = [ch for ch in checks if ch.name == "steady_motion_satisfies_equations"]
     return dataclasses.replace(d, analysis=a, checks=(*d.checks, *linear, *steady))
+
+
+def _prescribed(d: Derivation) -> Derivation:
+    """The spec's prescribed coordinates (issue 18): the motion substituted into the equations of every
+    coordinate as free, giving the free coordinates' equations and each drive force, with their checks."""
+    checkpoint("prescribed motion")
+    pm = prescribed_motion(d)
+    return dataclasses.replace(d, prescribed=pm, checks=(*d.checks, *pm.checks))
 
 
 def derive_with_deadline(

@@ -56,6 +56,8 @@ class StepKind(StrEnum):
     MATRIX_FORM = "matrix_form"  # C, G and Q of H q_ddot + C + G = Q
     MASS_MATRIX_DERIVATIVES = "mass_matrix_derivatives"  # the non-zero dH_ij/dq_k
     CHRISTOFFEL = "christoffel"  # each symbol from its definition, then C as a vector
+    PRESCRIBED_MOTION = "prescribed_motion"  # q_p = f(t) substituted: the free coordinates' equations
+    DRIVE_FORCE = "drive_force"  # the driven coordinate's row along the motion: the force or torque needed
     SIMULATION = "simulation"  # the equations of motion integrated numerically: plots, energy drift
     EQUILIBRIA = "equilibria"  # the rest configurations G(q) = Q(q, 0), each classified (engine/analysis)
     LINEARIZATION = "linearization"  # M dq_ddot + D dq_dot + K dq = B du about an equilibrium, its modes
@@ -88,6 +90,10 @@ _WHY = {
     StepKind.MATRIX_FORM: "The equations of motion as H q_ddot + C + G = Q, with G = dU/dq.",
     StepKind.MASS_MATRIX_DERIVATIVES: "The Christoffel symbols are made of the derivatives of H's entries.",
     StepKind.CHRISTOFFEL: "Each Christoffel symbol from its definition; C is their contraction with the rates.",
+    StepKind.PRESCRIBED_MOTION: "A prescribed coordinate is not a degree of freedom: its motion, rate and "
+    "acceleration are substituted into the equations of the free coordinates, which may then depend on t.",
+    StepKind.DRIVE_FORCE: "Along the prescribed motion the driven coordinate's equation no longer decides its "
+    "motion: it gives the force or torque the drive must supply, d/dt(dL/dq_dot) - dL/dq - Q.",
     StepKind.SIMULATION: "The equations of motion integrated numerically from the initial state: the "
     "coordinates, their rates and the energy over time.",
     StepKind.EQUILIBRIA: "At rest q_dot = q_ddot = 0, so the equations of motion reduce to G(q) = Q(q, 0).",
@@ -118,6 +124,8 @@ _QUANTITY = {
     StepKind.MATRIX_FORM: "C, G, Q",
     StepKind.MASS_MATRIX_DERIVATIVES: "dH/dq",
     StepKind.CHRISTOFFEL: "Christoffel symbols and C",
+    StepKind.PRESCRIBED_MOTION: "equations of the free coordinates",
+    StepKind.DRIVE_FORCE: "drive force",
     StepKind.SIMULATION: "q(t), q_dot(t) and the energy",
     StepKind.EQUILIBRIA: "equilibria",
     StepKind.LINEARIZATION: "linear model",
@@ -193,6 +201,8 @@ def _depends(system: System, methods: tuple[Method, ...], large: bool) -> dict[S
         K.MATRIX_FORM: tuple(form_needs),
         K.MASS_MATRIX_DERIVATIVES: (K.MASS_MATRIX,),
         K.CHRISTOFFEL: (K.MASS_MATRIX_DERIVATIVES,),
+        K.PRESCRIBED_MOTION: (K.EQUATIONS_OF_MOTION,),
+        K.DRIVE_FORCE: (K.PRESCRIBED_MOTION,),
         K.SIMULATION: (K.EQUATIONS_OF_MOTION,),  # what is integrated (the run itself: tutgen/sim/solution.py)
         K.EQUILIBRIA: (K.MATRIX_FORM,),
         # about the spec's equilibrium, or about each one found
@@ -263,6 +273,9 @@ def plan_steps(
     if system.is_constrained and Ask.EQUATIONS_OF_MOTION in system.ask:
         # a constrained system's equations of motion are those with the multipliers and the reduced ones
         todo += [StepKind.LAGRANGE_MULTIPLIERS, StepKind.REDUCED_EQUATIONS]
+    if system.prescribed_coordinates and {Ask.EQUATIONS_OF_MOTION, Ask.MATRIX_FORM} & system.ask:
+        # the driven coordinates' motion substituted, and the force that drives them (tutgen.engine.prescribed)
+        todo += [StepKind.PRESCRIBED_MOTION, StepKind.DRIVE_FORCE]
     while todo:
         kind = todo.pop()
         if kind in wanted or not _applies(system, kind, large):
@@ -289,6 +302,8 @@ def _applies(system: System, kind: StepKind, large: bool) -> bool:
         return system.kinetic_energy is None and bool(system.bodies) and not large
     if kind in (StepKind.CONSTRAINTS, StepKind.LAGRANGE_MULTIPLIERS, StepKind.REDUCED_EQUATIONS):
         return system.is_constrained and not large
+    if kind in (StepKind.PRESCRIBED_MOTION, StepKind.DRIVE_FORCE):
+        return bool(system.prescribed_coordinates)
     return True
 
 
@@ -418,6 +433,8 @@ def _equations(d: Derivation, kind: StepKind, large: bool) -> tuple[Equation, ..
         return analysis_equations(d, kind)
     if kind in (K.CONSTRAINTS, K.LAGRANGE_MULTIPLIERS, K.REDUCED_EQUATIONS):
         return constraint_equations(d, kind)
+    if kind in (K.PRESCRIBED_MOTION, K.DRIVE_FORCE):
+        return prescribed_equations(d, kind)
     if kind is K.CHRISTOFFEL:
         if large:
             return _pairs((_name("C"), d.coriolis_vector))
@@ -510,6 +527,33 @@ def constraint_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
     )
 
 
+def prescribed_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
+    """The prescribed-motion step: each q_p, q_p_dot, q_p_ddot as a function of t, then H_f, C_f, G_f, D_f,
+    Q_f and the free coordinates' equations; the drive step: each Q_drive_p, and along the motion
+    (the free accelerations eliminated) where that differs (tutgen.engine.prescribed)."""
+    pm = d.prescribed
+    if pm is None:
+        return ()
+    if kind is StepKind.DRIVE_FORCE:
+        out = [Equation(_name(f"Q_drive_{x.name}"), x.drive) for x in pm.driven]
+        out += [
+            Equation(_name(f"Q_drive_{x.name}"), x.drive_along_motion)
+            for x in pm.driven
+            if x.drive_along_motion is not None
+        ]
+        return tuple(out)
+    out = [Equation(symbol, value) for symbol, value in pm.substitution]
+    out += _pairs(
+        (_name("H_f"), pm.mass_matrix),
+        (_name("C_f"), pm.coriolis_vector),
+        (_name("G_f"), pm.gravity_vector),
+        (_name("D_f"), pm.driving_vector),
+        (_name("Q_f"), pm.generalized_forces),
+    )
+    out += [Equation(e + f, f) for e, f in zip(pm.equations_of_motion, pm.generalized_forces, strict=True)]
+    return tuple(out)
+
+
 def christoffel_definitions(d: Derivation) -> tuple[Equation, ...]:
     """Each non-zero symbol of the tutorial's convention from its definition,
     h_ijk = dH_ij/dq_k - 1/2 dH_jk/dq_i, then its value; then each non-zero symbol of the first kind,
@@ -564,6 +608,8 @@ _CHECK_ABOUT = {
     "dimensional_consistency": (StepKind.EQUATIONS_OF_MOTION, StepKind.LAGRANGE_EQUATIONS),
     "linearization_matches_finite_differences": (StepKind.EQUILIBRIA, StepKind.LINEARIZATION),
     "multipliers_equal_reduction": (StepKind.LAGRANGE_MULTIPLIERS, StepKind.REDUCED_EQUATIONS),
+    "prescribed_equals_reduced_lagrangian": (StepKind.PRESCRIBED_MOTION,),
+    "drive_force_equals_newton_euler": (StepKind.DRIVE_FORCE,),
 }
 
 

@@ -28,6 +28,8 @@ Vector = sp.ImmutableMatrix
 Matrix3 = sp.ImmutableMatrix
 
 GROUND = "ground"
+#: the time t in a prescribed motion (``coordinates: {phi: {prescribed: omega*t}}``); no spec may declare ``t``
+TIME = sp.Symbol("t", real=True)
 
 
 @dataclass(frozen=True)
@@ -61,6 +63,13 @@ class Coordinate:
     origin: Location
     # the same as a Dimension, also when only the joint says it (revolute: angle, prismatic: length)
     si_dimension: Dimension | None = None
+    # a driven coordinate (`prescribed:` or `rate:`): its motion q(t), an expression of TIME and the
+    # parameters; None for a degree of freedom (tutgen.engine.prescribed)
+    prescribed: sp.Expr | None = None
+
+    @property
+    def is_prescribed(self) -> bool:
+        return self.prescribed is not None
 
 
 class Shape(StrEnum):
@@ -367,6 +376,11 @@ class System:
     def is_constrained(self) -> bool:
         """Whether the coordinates are tied by constraints or loop-closing joints (tutgen.engine.constraints)."""
         return bool(self.constraints or self.loop_joints)
+
+    @property
+    def prescribed_coordinates(self) -> tuple[Coordinate, ...]:
+        """The driven coordinates (`prescribed:` or `rate:`), in order; the others are the degrees of freedom."""
+        return tuple(c for c in self.coordinates if c.prescribed is not None)
 
     @property
     def has_dynamics(self) -> bool:

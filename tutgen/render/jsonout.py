@@ -217,6 +217,8 @@ def derivation_to_json(d: Derivation, expand: bool = True) -> dict[str, Any]:
             from tutgen.render.sections.constraints import constraints_json
 
             results["constraints"] = constraints_json(d)
+        if d.prescribed is not None:  # additive, issue 18.4: docs/json-output.md#prescribed
+            results["prescribed"] = prescribed_results(d)
 
     out = {
         "tutgen": __version__,
@@ -527,4 +529,34 @@ def _steady(st: SteadyMotion, num: Any) -> dict[str, Any]:
         "method": st.method,
         **({"remark": st.remark} if st.remark else {}),
         "states": states,
+    }
+
+
+def prescribed_results(d: Derivation) -> dict[str, Any]:
+    """The driven coordinates (tutgen.engine.prescribed): each one's motion and the force or torque that
+    drives it, and the free coordinates' equations with the motion substituted, in matrix form."""
+    pm = d.prescribed
+    assert pm is not None
+    num = d.numeric
+    driven: dict[str, Any] = {}
+    for x in pm.driven:
+        entry = {
+            "motion": value(num(x.motion)),
+            "rate": value(num(x.rate)),
+            "acceleration": value(num(x.acceleration)),
+            "kind": x.kind,
+            "drive": value(num(x.drive)),
+        }
+        if x.drive_along_motion is not None:
+            entry["drive_along_motion"] = value(num(x.drive_along_motion))
+        driven[x.name] = entry
+    return {
+        "coordinates": driven,
+        "free_coordinates": [d.system.coordinates[i].name for i in pm.free],
+        "mass_matrix": matrix(num(pm.mass_matrix)),
+        "coriolis_vector": vector(num(pm.coriolis_vector)),
+        "gravity_vector": vector(num(pm.gravity_vector)),
+        "driving_vector": vector(num(pm.driving_vector)),
+        "generalized_forces": vector(num(pm.generalized_forces)),
+        "equations_of_motion": vector(num(pm.equations_of_motion)),
     }

@@ -19,7 +19,7 @@ from tutgen.engine.remarks import REMARK_CONSTANT_MASS_MATRIX
 from tutgen.engine.steps import StepKind
 from tutgen.figure.view import figure_view
 from tutgen.model.system import System
-from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, prose, rich, unit_tex
+from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, prose, rich, text, unit_tex
 from tutgen.render.printer import TexPrinter, is_decimal_document
 from tutgen.render.sections.analysis import equilibria, linearization
 from tutgen.render.sections.arm import arm_table
@@ -31,6 +31,7 @@ from tutgen.render.sections.lagrange import equations_of_motion, lagrange_equati
 from tutgen.render.sections.matrix import christoffel_symbols, matrix_form
 from tutgen.render.sections.momentum import momentum
 from tutgen.render.sections.newton_euler import newton_euler
+from tutgen.render.sections.prescribed import drive_force, prescribed_motion
 from tutgen.render.sections.simulation import simulation
 from tutgen.render.sections.steady import steady_motion
 from tutgen.render.wording import engine_parts
@@ -57,6 +58,8 @@ BUILDERS: dict[StepKind, tuple[Builder, ...]] = {
     StepKind.MATRIX_FORM: (arm_table, matrix_form),
     StepKind.MASS_MATRIX_DERIVATIVES: (christoffel_symbols,),
     StepKind.CHRISTOFFEL: (christoffel_symbols,),
+    StepKind.PRESCRIBED_MOTION: (prescribed_motion,),
+    StepKind.DRIVE_FORCE: (drive_force,),
     StepKind.SIMULATION: (simulation,),
     StepKind.EQUILIBRIA: (equilibria,),
     StepKind.LINEARIZATION: (linearization,),
@@ -106,7 +109,13 @@ def given_items(system: System) -> list[list[Part]]:
 def coordinate_items(system: System) -> list[list[Part]]:
     """Each generalized coordinate with its description."""
     tex = TexPrinter(system)
-    return [[math(c.latex)] + (rich(c.description, tex, ": ") if c.description else []) for c in system.coordinates]
+    items = []
+    for c in system.coordinates:
+        item = [math(c.latex)] + (rich(c.description, tex, ": ") if c.description else [])
+        if c.prescribed is not None:  # a driven coordinate (docs/spec-format.md#prescribed)
+            item += [text(" (prescribed: "), math(f"{c.latex} = {tex(c.prescribed)}"), text(")")]
+        items.append(item)
+    return items
 
 
 def _said_in(parts: Sequence[dict[str, Any]]) -> frozenset[str]:

@@ -123,6 +123,20 @@ class CoordinateSpec(SpecModel):
     dimension: Literal["length", "angle"] | None = Field(
         None, description="'length' or 'angle'; inferred from the joint that uses it when omitted."
     )
+    prescribed: Expr | None = Field(
+        None,
+        description="A driven coordinate: its motion as an expression of the time t and the parameters, "
+        "e.g. 'omega*t' or 'a*sin(Omega*t)'. It leaves the degrees of freedom; tutgen derives the "
+        "equations of the others and the force or torque that drives it (docs/spec-format.md#prescribed).",
+    )
+    rate: Expr | None = Field(
+        None,
+        description="A coordinate driven at a constant rate (parameters and numbers): "
+        "NAME = initial + rate*t; the same as `prescribed` with that expression.",
+    )
+    initial: Expr | None = Field(
+        None, description="With `rate`: the value at t = 0 (parameters and numbers; default 0)."
+    )
 
 
 def _coordinates(value: Any) -> Any:

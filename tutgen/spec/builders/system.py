@@ -21,7 +21,7 @@ from tutgen.spec.builders.bodies import build_bodies, declared_bodies
 from tutgen.spec.builders.constraints import build_constraints, build_independent_coordinates
 from tutgen.spec.builders.context import Context
 from tutgen.spec.builders.conventions import build_conventions
-from tutgen.spec.builders.coordinates import build_coordinates, coordinates_with_dimensions
+from tutgen.spec.builders.coordinates import build_coordinates, check_prescribed, coordinates_with_dimensions
 from tutgen.spec.builders.elements import build_elements
 from tutgen.spec.builders.energy import build_energy
 from tutgen.spec.builders.figure import build_figure
@@ -77,6 +77,7 @@ def build_system(doc: S.SpecDoc, data: dict[str, Any], smap: SourceMap, dropped:
     ask = build_ask(ctx, bool(ctx.coords))
     methods = build_methods(ctx, ask)  # after `ask`: Newton-Euler needs equations of motion asked for
     conventions = build_conventions(ctx, ask)  # after `ask`: a convention for symbols not asked for is an error
+    check_prescribed(ctx)  # after everything: what a driven coordinate rules out
     if ctx.errors:
         raise SpecErrors(ctx.errors)
 
