@@ -36,7 +36,7 @@ __all__ = ["DrivenCoordinate", "PrescribedMotion", "drive_kind", "prescribed_mot
 
 #: the free accelerations are eliminated from a drive force (its value along the motion as a function of
 #: the state) only for this many free coordinates, and the result kept only when this short
-_SOLVE_FREE = 3
+_SOLVE_FREE = 1
 _ALONG_OPS = 150
 #: the substituted Lagrangian's equations are compared only when the equations are this short
 _CHECK_OPS = 4000
@@ -238,11 +238,11 @@ def _free_accelerations(
 ) -> dict[sp.Symbol, sp.Expr] | None:
     """q_f_ddot from H_f q_f_ddot = -(the rest), for a few free coordinates; None if H_f is singular."""
     n = len(qddf)
-    if n > _SOLVE_FREE:
+    if n > _SOLVE_FREE or sp.count_ops(eom_f) > 4 * _ALONG_OPS:  # an arm's: long, and its solution longer
         return None
     rest = sp.ImmutableMatrix([-eom_f[a].xreplace({x: 0 for x in qddf}) for a in range(n)])
     det = tidy(hf.det(method="berkowitz"))
     if det == 0:
         return None
     solved = hf.LUsolve(rest)
-    return {qddf[a]: sp.cancel(tidy(solved[a])) for a in range(n)}
+    return {qddf[a]: solved[a] for a in range(n)}  # tidied in the drive it is substituted into
