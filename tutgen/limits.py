@@ -180,3 +180,9 @@ def deadline(seconds: float | None) -> Iterator[None]:
     finally:
         _state["expired"] = None
         _state["ends"] = None
+
+
+def forget_shields() -> None:
+    """In a process forked inside :func:`shielded` (a worker pool's child): that block never ends here,
+    so the alarm must not wait for it."""
+    _state["shield"] = 0

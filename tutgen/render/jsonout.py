@@ -214,8 +214,6 @@ def derivation_to_json(d: Derivation, expand: bool = True) -> dict[str, Any]:
         if d.analysis is not None:  # issue 18: equilibria, linear models, momentum (below)
             results.update(analysis_results(d))
         if d.constraints is not None:  # additive, issue 21: multipliers, reduced equations (docs/json-output.md)
-            from tutgen.render.sections.constraints import constraints_json
-
             results["constraints"] = constraints_json(d)
         if d.prescribed is not None:  # additive, issue 18.4: docs/json-output.md#prescribed
             results["prescribed"] = prescribed_results(d)
@@ -560,3 +558,49 @@ def prescribed_results(d: Derivation) -> dict[str, Any]:
         "generalized_forces": vector(num(pm.generalized_forces)),
         "equations_of_motion": vector(num(pm.equations_of_motion)),
     }
+
+
+def constraints_json(d: Derivation) -> dict[str, Any] | None:
+    """The constrained results for the JSON output's ``results.constraints`` (docs/json-output.md): the
+    constraints, A, B, T and det A_d, the position analysis, the multipliers and the reduced equations;
+    ``None`` for a spec without constraints. Numeric parameters substituted, as in every result."""
+
+    cd = d.constraints
+    if cd is None:
+        return None
+    ck = cd.kinematics
+    num = d.numeric
+    names = [x.name for x in d.system.coordinates]
+    out: dict[str, Any] = {
+        "names": [con.name for con in ck.constraints],
+        "kinds": [con.kind.value for con in ck.constraints],
+        "functions": [value(num(f)) for f in ck.functions],
+        "jacobian": matrix(num(ck.jacobian)),
+        "independent_coordinates": [names[j] for j in ck.independent],
+        "dependent_coordinates": [names[j] for j in ck.dependent],
+        "velocity_ratios": matrix(num(ck.velocity_ratios)),
+        "dependent_determinant": value(num(ck.determinant)),
+        "velocity_map": matrix(num(ck.velocity_map)),
+        "acceleration_terms": vector(num(ck.bias)),
+    }
+    if ck.positions or ck.loop is not None:
+        branches = [(0, ck.positions[0])] if ck.positions else [(b.sign, b.positions) for b in ck.loop.branches]  # type: ignore[union-attr]
+        out["position_analysis"] = [
+            {"sign": sign, "positions": {names[j]: value(num(e)) for j, e in positions}} for sign, positions in branches
+        ]
+    out["multipliers"] = [str(lam) for lam in cd.multipliers]
+    out["constraint_forces"] = vector(num(cd.constraint_forces))
+    out["multipliers_in_accelerations"] = [value(num(e)) for e in cd.multipliers_in_accelerations]
+    if cd.multiplier_values:
+        out["multiplier_values"] = [value(num(e)) for e in cd.multiplier_values]
+    reduced: dict[str, Any] = {
+        "mass_matrix": matrix(num(cd.mass_matrix)),
+        "coriolis_vector": vector(num(cd.coriolis_vector)),
+        "gravity_vector": vector(num(cd.gravity_vector)),
+        "generalized_forces": vector(num(cd.generalized_forces)),
+        "equations_of_motion": vector(num(cd.equations_of_motion)),
+    }
+    if cd.accelerations:
+        reduced["accelerations"] = [value(num(e)) for e in cd.accelerations]
+    out["reduced"] = reduced
+    return out

@@ -85,7 +85,7 @@ def _init_worker(fn: Callable[[Any, Any], Any], shared: Any) -> None:
         # that block never ends, so end it here; a signal sent meanwhile arrives now
         import tutgen.limits
 
-        tutgen.limits._state["shield"] = 0
+        tutgen.limits.forget_shields()
         signal.pthread_sigmask(signal.SIG_UNBLOCK, _SHIELD)
 
 

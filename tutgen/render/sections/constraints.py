@@ -11,7 +11,6 @@ from typing import Any
 import sympy as sp
 
 from tutgen.engine.constraints.positions import LoopAnalysis, assembly_at, assembly_ranges, branch_at
-from tutgen.engine.derivation import Derivation
 from tutgen.engine.steps import StepKind
 from tutgen.engine.tidy import tidy
 from tutgen.figure.build import draw_system
@@ -391,50 +390,3 @@ def _branch_names(c: SolutionContext, loop: LoopAnalysis) -> list[dict[str, Any]
             )
         )
     ]
-
-
-def constraints_json(d: Derivation) -> dict[str, Any] | None:
-    """The constrained results for the JSON output's ``results.constraints`` (docs/json-output.md): the
-    constraints, A, B, T and det A_d, the position analysis, the multipliers and the reduced equations;
-    ``None`` for a spec without constraints. Numeric parameters substituted, as in every result."""
-    from tutgen.render.jsonout import matrix, value, vector  # the JSON value shapes (jsonout imports us)
-
-    cd = d.constraints
-    if cd is None:
-        return None
-    ck = cd.kinematics
-    num = d.numeric
-    names = [x.name for x in d.system.coordinates]
-    out: dict[str, Any] = {
-        "names": [con.name for con in ck.constraints],
-        "kinds": [con.kind.value for con in ck.constraints],
-        "functions": [value(num(f)) for f in ck.functions],
-        "jacobian": matrix(num(ck.jacobian)),
-        "independent_coordinates": [names[j] for j in ck.independent],
-        "dependent_coordinates": [names[j] for j in ck.dependent],
-        "velocity_ratios": matrix(num(ck.velocity_ratios)),
-        "dependent_determinant": value(num(ck.determinant)),
-        "velocity_map": matrix(num(ck.velocity_map)),
-        "acceleration_terms": vector(num(ck.bias)),
-    }
-    if ck.positions or ck.loop is not None:
-        branches = [(0, ck.positions[0])] if ck.positions else [(b.sign, b.positions) for b in ck.loop.branches]  # type: ignore[union-attr]
-        out["position_analysis"] = [
-            {"sign": sign, "positions": {names[j]: value(num(e)) for j, e in positions}} for sign, positions in branches
-        ]
-    out["multipliers"] = [str(lam) for lam in cd.multipliers]
-    out["constraint_forces"] = vector(num(cd.constraint_forces))
-    out["multipliers_in_accelerations"] = [value(num(e)) for e in cd.multipliers_in_accelerations]
-    if cd.multiplier_values:
-        out["multiplier_values"] = [value(num(e)) for e in cd.multiplier_values]
-    reduced: dict[str, Any] = {
-        "mass_matrix": matrix(num(cd.mass_matrix)),
-        "coriolis_vector": vector(num(cd.coriolis_vector)),
-        "gravity_vector": vector(num(cd.gravity_vector)),
-        "generalized_forces": vector(num(cd.generalized_forces)),
-        "equations_of_motion": vector(num(cd.equations_of_motion)),
-    }
-    if cd.accelerations:
-        reduced["accelerations"] = [value(num(e)) for e in cd.accelerations]
-    out["reduced"] = reduced
-    return out
