@@ -56,7 +56,7 @@ def run(tree: Path, label: str, variants: int, workers: int, seed: int, tmp: Pat
     """One fresh `tutgen sheet` by the tutgen of ``tree``; its times, its report and its output's digest."""
     out = tmp / f"out-{label}-{workers}"
     cmd = [sys.executable, "-m", "tutgen", "sheet", str(tree / SHEET), "-o", str(out), "-n", str(variants)]
-    cmd += ["-f", "md", "-f", "tex", "--workers", str(workers), "--seed", str(seed), "--no-progress"]
+    cmd += ["-f", "md", "-f", "tex", "--workers", str(workers), "--seed", str(seed), "--no-progress", "--timeout", "0"]
     env = {**os.environ, "PYTHONPATH": str(tree)}
     cpu = _children_cpu()
     start = time.perf_counter()
