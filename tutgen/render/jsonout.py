@@ -86,8 +86,7 @@ EXPANDED_KEYS = (
 NOTE_NOT_EXPANDED = (
     "Written out, H, C q_dot and G have more than {budget} operations: they are given by results.program "
     "(the definitions x_k in order, then H, C q_dot and G in terms of them). The entries written out "
-    "(kinetic_energy, lagrangian, mass_matrix, coriolis_vector, coriolis_matrix, gravity_vector, "
-    "equations_of_motion, christoffel, christoffel_first_kind) are left out: tutgen solve --expand writes them."
+    f"({', '.join(EXPANDED_KEYS)}) are left out: tutgen solve --expand writes them."
 )
 
 

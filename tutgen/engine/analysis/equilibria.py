@@ -124,22 +124,9 @@ def find_equilibria(d: Derivation) -> Equilibria:
         if not equations:
             solutions = (tuple((c.name, sp.Integer(0)) for c in coords),)
         return Equilibria(residual, solutions, free, "symbolic" if not equations else "none", remark)
-    found = _solve_symbolic(equations, [c.q for c in present])
-    method = "symbolic"
-    if found is None and not (residual.free_symbols - {c.q for c in coords} - set(d.values)):
-        found = _solve_numeric(d, residual, present)
-        method = "numeric"
-    if not found:
+    out, method = roots(d, residual, present, coords)
+    if not out:
         return Equilibria(residual, (), free, "none", "no equilibrium was found")
-    out: list[tuple[tuple[str, sp.Expr], ...]] = []
-    seen: set[tuple[str, ...]] = set()
-    for sol in found:
-        values = tuple((c.name, _canonical(d, c.name, tidy(sp.sympify(sol.get(c.q, sp.Integer(0)))))) for c in coords)
-        key = tuple(sp.srepr(v) for _, v in values)
-        if key not in seen:
-            seen.add(key)
-            out.append(values)
-    out.sort(key=lambda vs: [default_sort_key(v) for _, v in vs])
     return Equilibria(residual, tuple(out), free, method)
 
 
@@ -249,12 +236,13 @@ def _solve_numeric(d: Derivation, residual: sp.ImmutableMatrix, present: list) -
 
 
 def roots(
-    d: Derivation, residual: sp.ImmutableMatrix, present: list
+    d: Derivation, residual: sp.ImmutableMatrix, present: list, shown: list | None = None
 ) -> tuple[list[tuple[tuple[str, sp.Expr], ...]], str]:
     """The roots of ``residual`` in the coordinates ``present`` (every family, symbolically where sympy
     can, else numerically in the box when everything is a number), each as (name, value) pairs of
-    ``present`` in order, an angle's value in (-pi, pi]; with how they were found ("symbolic", "numeric"
-    or "none"). Shared with steady motion (tutgen.engine.analysis.steady)."""
+    ``shown`` (default ``present``) in order, 0 for a coordinate solved for by none of them, an angle's
+    value in (-pi, pi]; with how they were found ("symbolic", "numeric" or "none"). Shared with the
+    equilibria (:func:`find_equilibria`) and steady motion (tutgen.engine.analysis.steady)."""
     equations = [e for e in residual if e != 0]
     found = _solve_symbolic(equations, [c.q for c in present])
     method = "symbolic"
@@ -266,7 +254,10 @@ def roots(
     out: list[tuple[tuple[str, sp.Expr], ...]] = []
     seen: set[tuple[str, ...]] = set()
     for sol in found:
-        values = tuple((c.name, _canonical(d, c.name, tidy(sp.sympify(sol.get(c.q, sp.Integer(0)))))) for c in present)
+        values = tuple(
+            (c.name, _canonical(d, c.name, tidy(sp.sympify(sol.get(c.q, sp.Integer(0))))))
+            for c in (present if shown is None else shown)
+        )
         key = tuple(sp.srepr(v) for _, v in values)
         if key not in seen:
             seen.add(key)

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import difflib
+from collections.abc import Mapping
 
 import sympy as sp
 
@@ -29,23 +30,11 @@ def build_analysis(ctx: Context) -> Analysis | None:
     base: KeyPath = ("analysis",)
     places = []
     about: tuple[tuple[str, sp.Expr], ...] | None = None
-    known = list(ctx.coords)
     if spec.about is not None:
         given: dict[str, sp.Expr] = {}
-        for name, value in spec.about.items():
-            path: KeyPath = (*base, "about", name)
-            if name not in ctx.coords:
-                ctx.error(
-                    path,
-                    f"'about' names unknown coordinate '{name}' (known: {', '.join(known) or 'none'})",
-                    _hint(name, known),
-                    key=True,
-                )
-                continue
-            result = ctx.expr(path, value, ctx.params, None, "an equilibrium value")
-            if result is not None:
-                given[name] = result
-                places.append((f"about.{name}", ctx.smap.location(path)))
+        for name, result, path in _per_coordinate(ctx, "about", spec.about, "an equilibrium value"):
+            given[name] = result
+            places.append((f"about.{name}", ctx.smap.location(path)))
         places.append(("about", ctx.smap.key_location((*base, "about"))))
         about = tuple((c, given.get(c, sp.Integer(0))) for c in ctx.coords)
     inputs = []
@@ -78,21 +67,32 @@ def _steady(
     """`steady`: known coordinates, each with a constant rate (numbers and parameters). Whether each is
     cyclic is known only once H, G and Q are derived (tutgen.engine.analysis.steady reports it at
     ``steady.<name>``)."""
-    known = list(ctx.coords)
     out: list[tuple[str, sp.Expr]] = []
+    for name, result, path in _per_coordinate(ctx, "steady", spec, "a steady rate"):
+        out.append((name, result))
+        places.append((f"steady.{name}", ctx.smap.key_location(path)))
+    places.append(("steady", ctx.smap.key_location(("analysis", "steady"))))
+    return tuple(out)
+
+
+def _per_coordinate(
+    ctx: Context, key: str, spec: Mapping[str, object], what: str
+) -> list[tuple[str, sp.Expr, KeyPath]]:
+    """``analysis.<key>``: a value per known coordinate (numbers and parameters), each as (name, value,
+    its key path); an unknown coordinate or a value that does not parse is reported and left out."""
+    known = list(ctx.coords)
+    out: list[tuple[str, sp.Expr, KeyPath]] = []
     for name, value in spec.items():
-        path: KeyPath = ("analysis", "steady", name)
+        path: KeyPath = ("analysis", key, name)
         if name not in ctx.coords:
             ctx.error(
                 path,
-                f"'steady' names unknown coordinate '{name}' (known: {', '.join(known) or 'none'})",
+                f"'{key}' names unknown coordinate '{name}' (known: {', '.join(known) or 'none'})",
                 _hint(name, known),
                 key=True,
             )
             continue
-        result = ctx.expr(path, value, ctx.params, None, "a steady rate")
+        result = ctx.expr(path, value, ctx.params, None, what)
         if result is not None:
-            out.append((name, result))
-            places.append((f"steady.{name}", ctx.smap.key_location(path)))
-    places.append(("steady", ctx.smap.key_location(("analysis", "steady"))))
-    return tuple(out)
+            out.append((name, result, path))
+    return out
