@@ -11,7 +11,7 @@ tutgen/render/blocks.py.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from typing import Any
 
 from tutgen.engine.derivation import Derivation
@@ -118,10 +118,10 @@ def coordinate_items(system: System) -> list[list[Part]]:
     return items
 
 
-def _said_in(parts: Sequence[dict[str, Any]]) -> frozenset[str]:
-    """The engine's remarks that a printed section already makes in its own words (the Christoffel
+def _said_in(d: Derivation) -> frozenset[str]:
+    """The engine's remarks that a printed step already makes in its own words (the Christoffel
     section of a constant H says that every symbol vanishes): not said twice."""
-    if any("Christoffel" in str(sec.get("title", "")) for sec in parts):
+    if any(step.kind is StepKind.CHRISTOFFEL for step in d.steps):
         return frozenset({REMARK_CONSTANT_MASS_MATRIX})
     return frozenset()
 
@@ -152,7 +152,7 @@ def solution_view(d: Derivation, decimals: bool = False) -> dict[str, Any]:
         "sections": parts,
         "figure": figure_view(s),  # tutgen/figure/view.py: the schematic (TikZ, SVG name) or the spec's picture
         # tutgen's own sentences, their ASCII maths (q_ddot, theta1, H = H^T) typeset
-        "remarks": [engine_parts(r, tex) for r in d.remarks if r not in _said_in(parts)],
+        "remarks": [engine_parts(r, tex) for r in d.remarks if r not in _said_in(d)],
         "checks": [
             engine_parts(
                 c.detail
