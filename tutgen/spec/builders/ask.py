@@ -42,6 +42,8 @@ def build_ask(ctx: Context, dynamic: bool) -> frozenset[Ask]:
                     "`momentum` needs bodies, and the spec gives its energy (`energy`) instead; expected "
                     "the bodies, or no `momentum` in `ask`",
                 )
+            elif a is Ask.STEADY_MOTION and (refused := _steady_refused(ctx)) is not None:
+                ctx.error(("ask", i), refused[0], refused[1])
             else:
                 asked.add(a)
         if ctx.doc.analysis is not None and ctx.doc.analysis.steady is not None and Ask.STEADY_MOTION not in asked:
@@ -76,6 +78,33 @@ def build_ask(ctx: Context, dynamic: bool) -> frozenset[Ask]:
     if not ctx.doc.bodies:
         everything.discard(Ask.INERTIA)
     return frozenset(everything)
+
+
+def _steady_refused(ctx: Context) -> tuple[str, str] | None:
+    """Why `ask: [steady_motion]` does not apply (message, hint), or None. Its rows are those of the
+    unconstrained H q_ddot + C + G = Q, and a cyclic coordinate is one absent from H, G and Q: with
+    constraints the steady state must also satisfy them and their multipliers enter every row, and a
+    prescribed coordinate is not a degree of freedom whose rate the analysis could hold."""
+    doc = ctx.doc
+    loops = [name for name, j in (doc.joints or {}).items() if j.closes_loop]
+    if doc.constraints or loops:
+        why = "`constraints`" if doc.constraints else f"the loop-closing joint '{loops[0]}'"
+        return (
+            f"`steady_motion` applies to an unconstrained system, and this spec has {why}: its steady states "
+            "would have to satisfy the constraints too, and the constraint forces enter every equation of motion",
+            "remove `steady_motion` from `ask` (the reduced equations of a constrained system are its "
+            "`equations_of_motion`)",
+        )
+    driven = [name for name, c in (doc.coordinates or {}).items() if c.prescribed is not None or c.rate is not None]
+    if driven:
+        name = driven[0]
+        return (
+            f"`steady_motion` holds the rate of a free cyclic coordinate, and '{name}' is prescribed: it is no "
+            "degree of freedom, so there is no rate left to hold",
+            f"drop `prescribed`/`rate` of '{name}' and give its rate as `analysis: {{steady: {{{name}: ...}}}}`, "
+            "or ask for `equilibria` of the driven system",
+        )
+    return None
 
 
 def _without_initial_value(ctx: Context) -> tuple[str, str] | None:
