@@ -144,8 +144,8 @@ def test_steady_stability_matches_kanes_linearisation(path: str) -> None:
     held = [names.index(c) for c, _ in st.rates]
     checked = 0
     for state in st.states:
-        if not _exists(d, state, values) or state.verdict == "undetermined":
-            continue
+        if not _exists(d, state, values) or state.verdict == "undetermined" or state.pole:
+            continue  # at a pole Kane's mass matrix is singular too: test_pole_* below
         op = _operating_point(d, model, state, values)
         a, _, _ = km.linearize(op_point=op, A_and_B=True, simplify=False)
         a = np.array(sp.Matrix(a).xreplace(ref).subs(op).evalf().tolist(), dtype=float)
@@ -201,6 +201,58 @@ def test_conical_pendulum_frequency_by_hand() -> None:
         assert x.exists is True and x.verdict == "stable"
         assert abs(abs(x.eigenvalues[0]) - expected) < 1e-9
     assert st.check.passed
+
+
+def _cartesian_pendulum_eigenvalues(up: bool, g: float, l_: float) -> np.ndarray:
+    """The spherical pendulum in coordinates regular on the vertical axis, x and y of the bob (z from
+    the rod's length), linearised about the axis by Kane's method: the independent reference at the
+    pole theta = 0 (or pi, ``up``) of the spherical coordinates."""
+    from sympy.physics.mechanics import KanesMethod, Particle, Point, ReferenceFrame, dynamicsymbols
+
+    x, y, ux, uy = dynamicsymbols("x y u_x u_y")
+    n = ReferenceFrame("N")
+    o = Point("O")
+    o.set_vel(n, 0)
+    z = (1 if up else -1) * sp.sqrt(l_**2 - x**2 - y**2)
+    bob = o.locatenew("P", x * n.x + y * n.y + z * n.z)
+    bob.set_vel(n, bob.pos_from(o).dt(n).subs({x.diff(): ux, y.diff(): uy}))
+    km = KanesMethod(n, q_ind=[x, y], u_ind=[ux, uy], kd_eqs=[x.diff() - ux, y.diff() - uy])
+    m = 0.5
+    km.kanes_equations([Particle("bob", bob, m)], [(bob, -m * g * n.z)])
+    op = {x: 0, y: 0, ux: 0, uy: 0, ux.diff(): 0, uy.diff(): 0}
+    a, _, _ = km.linearize(op_point=op, A_and_B=True, simplify=False)
+    return np.linalg.eigvals(np.array(sp.Matrix(a).subs(op).evalf().tolist(), dtype=float))
+
+
+def test_pole_of_spherical_coordinates_is_decided_as_the_rest_state_on_the_axis() -> None:
+    """theta = 0 and pi of the conical pendulum: the azimuth is undefined there (its momentum is 0 at
+    any rate), so Routh's reduction does not exist; the steady motion is the pendulum at rest on the
+    axis, stable hanging and unstable upright, with the frequencies of the Cartesian linearisation."""
+    _, d, _ = solved(CONE)
+    g, l_ = 9.81, 0.8
+    poles = {float(dict(x.at)["theta"]): x for x in d.analysis.steady.states if x.pole}
+    assert sorted(poles) == [0.0, pytest.approx(np.pi)]
+    for value, state in poles.items():
+        up = value != 0.0
+        theirs = _cartesian_pendulum_eigenvalues(up, g, l_)
+        ours = np.array(state.eigenvalues)
+        for lam in ours:
+            assert min(abs(lam - z) for z in theirs) < 1e-9, (value, ours, theirs)
+        assert state.verdict == ("unstable" if up else "stable")
+        assert "the coordinates are singular at theta = " in state.reason
+        assert "at rest on the axis" in state.reason
+
+
+def test_pole_with_a_spin_says_why_it_is_not_decided() -> None:
+    """The heavy top at theta = 0 spins about its own axis (its momenta are not 0): the verdict is not
+    decided, and the reason says what would decide it."""
+    d = derive(_with(TOP, ask=["equations_of_motion", "steady_motion"]))
+    poles = [x for x in d.analysis.steady.states if x.pole]
+    assert poles
+    for x in poles:
+        assert x.verdict in ("undetermined", "stable", "unstable")
+        if x.verdict == "undetermined":
+            assert "spinning about its own axis" in x.reason and "sleeping top" in x.reason
 
 
 def test_rate_without_steady_motion_is_a_result_not_an_error() -> None:

@@ -77,6 +77,9 @@ class SteadyState:
     eigenvalues: tuple[complex, ...] | None = None  # numeric spec: of the reduced model, Im >= 0
     # whether it exists at these values: True/False when every condition is a number, else None
     exists: bool | None = True
+    # at a pole of the coordinates (a free held coordinate's momentum independent of its rate): then
+    # mass and stiffness are those of the rest state, H and d(G - Q)/dq of the others (see _at_pole)
+    pole: bool = False
 
 
 @dataclass(frozen=True)
@@ -482,20 +485,13 @@ def _state(
             "it does not exist at these values",
             exists=False,
         )
+    pole = False
     try:
         mass, damping, stiffness = _reduced(d, point_inputs, others, free)
         verdict, reason, where, eigen = _verdict(d, mass, damping, stiffness, exists)
     except _Singular:
-        n = len(others)
-        mass = damping = stiffness = sp.ImmutableMatrix.zeros(n, n)
-        names = ", ".join(c.name for c in free)
-        verdict, reason, where, eigen = (
-            "undetermined",
-            f"the momentum of {names} does not depend on its rate here (a pole of the coordinates), so holding "
-            "it does not fix the rate: the reduced linear model does not exist",
-            (),
-            None,
-        )
+        mass, damping, stiffness, verdict, reason, where, eigen = _at_pole(d, at, point_inputs, others, free, momenta)
+        pole = True
     return SteadyState(
         at=at,
         exists_where=exists,
@@ -510,7 +506,82 @@ def _state(
         stable_where=where,
         eigenvalues=eigen,
         exists=known,
+        pole=pole,
     )
+
+
+def _at_pole(
+    d: Derivation,
+    at: tuple[tuple[str, sp.Expr], ...],
+    point: dict[sp.Basic, sp.Expr],
+    others: list[Coordinate],
+    free: list[Coordinate],
+    momenta: tuple[tuple[str, sp.Expr], ...],
+) -> tuple[
+    sp.ImmutableMatrix,
+    sp.ImmutableMatrix,
+    sp.ImmutableMatrix,
+    str,
+    str,
+    tuple[sp.Basic, ...],
+    tuple[complex, ...] | None,
+]:
+    """The verdict at a pole of the coordinates, where Routh's reduction does not exist (A_cc = 0).
+
+    There the free held coordinate is undefined (the azimuth on the axis of a spherical pendulum): its
+    momentum is 0 whatever its rate, and the rate means nothing. When every held momentum is 0 there,
+    nothing spins and the steady motion is the rest state on the axis, an equilibrium: decided as one,
+    by M = H and K = d(G - Q)/dq of the others at rest (the polar angle is the distance from the axis,
+    so its stiffness is the stiffness in every direction about the axis). When something spins (a
+    sleeping top) that needs coordinates regular on the axis, which are not formed: said so."""
+    s = d.system
+    names = ", ".join(c.name for c in free)
+    where = " and ".join(f"{n} = {_plain(v)}" for n, v in at)
+    singular = (
+        f"the coordinates are singular at {where}: on that axis {names} is undefined, the momentum of {names} "
+        "is 0 whatever its rate, and the rate means nothing"
+    )
+    n = len(others)
+    zero = sp.ImmutableMatrix.zeros(n, n)
+    if any(sp.simplify(v) != 0 for _, v in momenta):
+        reason = (
+            f"{singular}. This steady motion is the body spinning about its own axis; its stability needs "
+            "coordinates that are regular on the axis (the sleeping top's criterion), which this analysis "
+            "does not form"
+        )
+        return zero, zero, zero, "undetermined", reason, (), None
+    assert d.equations_of_motion is not None
+    rows = [s.coordinates.index(c) for c in others]
+    e = sp.Matrix([d.equations_of_motion[i] for i in rows])
+    rest = {k: v for k, v in point.items() if k not in {c.q for c in others}}
+    rest.update({c.qd: sp.Integer(0) for c in s.coordinates})
+    steady = {c.q: v for c, (_, v) in zip(others, at, strict=True)}
+
+    def at_rest(m: sp.Matrix) -> sp.ImmutableMatrix:
+        return sp.ImmutableMatrix(m.xreplace(rest).xreplace(steady).applyfunc(lambda v: _short(sp.factor(v))))
+
+    mass = at_rest(e.jacobian([c.qdd for c in others]))
+    stiffness = at_rest(e.jacobian([c.q for c in others]))
+    verdict, why, stable_where, eigen = _verdict(d, mass, zero, stiffness)
+    rest_state = (
+        f"{singular}. This steady motion is the system at rest on the axis (turning about the axis moves "
+        "nothing there), an equilibrium, decided as one: the stiffness K of the others at rest is the same "
+        "in every direction about the axis"
+    )
+    if verdict == "stable":
+        reason = f"{rest_state}, and it is positive: U has a strict minimum there"
+    elif verdict == "unstable":
+        reason = f"{rest_state}, and it is negative: U has a maximum there"
+    else:
+        reason = f"{rest_state}; {why}"
+    return mass, zero, stiffness, verdict, reason, stable_where, eigen
+
+
+def _plain(v: sp.Expr) -> str:
+    """A steady value for a sentence: pi for a float of pi, the spec grammar otherwise."""
+    if v.is_Float and abs(float(v) - float(sp.pi)) < 1e-12:
+        return "pi"
+    return str(v)
 
 
 def _check(

@@ -134,10 +134,14 @@ def _stability(c: SolutionContext, state: SteadyState) -> list[dict[str, Any]]:
         blocks.append(para(*_verdict(c, state)))
         return blocks
     if state.mass.shape[0] and state.mass != sp.zeros(*state.mass.shape):
-        lines = [f"M_r = {tex(num(state.mass))}"]
+        # at a pole the matrices are those of the rest state on the axis, not of Routh's reduction
+        sub = "" if state.pole else "_r"
+        lines = [f"M{sub} = {tex(num(state.mass))}"]
         if state.damping != sp.zeros(*state.damping.shape):
-            lines.append(f"D_r = {tex(num(state.damping))}")
-        lines.append(f"K_r = {tex(num(state.stiffness))}")
+            lines.append(f"D{sub} = {tex(num(state.damping))}")
+        lines.append(f"K{sub} = {tex(num(state.stiffness))}")
+        if state.pole:
+            blocks.append(para(text("At rest on the axis, the linear model of the others has")))
         blocks.append(display(",\\quad ".join(lines)))
     if state.eigenvalues is not None:
         shown = ",\\ ".join(_complex(z) for z in state.eigenvalues)
@@ -153,7 +157,11 @@ def _stability(c: SolutionContext, state: SteadyState) -> list[dict[str, Any]]:
         )
         blocks.append(
             para(
-                text("The eigenvalues of the reduced model: "),
+                text(
+                    "The eigenvalues of the linear model at rest: "
+                    if state.pole
+                    else "The eigenvalues of the reduced model: "
+                ),
                 math(f"\\lambda = {shown}\\ \\mathrm{{s^{{-1}}}}"),
                 *extra,
                 text("."),
