@@ -233,10 +233,44 @@ def answers_schema() -> dict[str, Any]:
         "properties": {
             "spec": {**label, "description": "The spec the answers are for (informational)."},
             "student": {**label, "description": "The student's name, for the reports."},
+            "steady_motion": _steady_answer(),
         },
         # tolerances are the instructor's: `tolerance`, `rel_tol`, … are not result keys, so refused
         "propertyNames": {"anyOf": [{"enum": ["spec", "student"]}, _result_key("An answered item")]},
         "additionalProperties": {"$ref": "#/$defs/answer"},
+    }
+
+
+def _steady_answer() -> dict[str, Any]:
+    """``steady_motion`` in an answers file: its motions, each found by its values (docs/check.md)."""
+    from tutgen.check.steady import STABILITY_WORDS
+
+    table = {"type": "object", "additionalProperties": {"$ref": "#/$defs/answer"}}
+    conditions = {
+        "description": "Inequalities in the spec grammar ('g <= R*omega**2'), a list of them, or 'always'.",
+        "anyOf": [{"type": ["string", "boolean"]}, {"type": "array", "items": {"type": "string"}}],
+    }
+    motion = {
+        "type": "object",
+        "properties": {
+            "at": {
+                **table,
+                "description": "The value of each coordinate not held, or an equation it satisfies "
+                "('cos(theta) = g/(R*omega**2)'); an angle counts up to a multiple of 2 pi.",
+            },
+            "exists_where": conditions,
+            "required": {**table, "description": "The generalized force each held coordinate needs."},
+            "inputs": {**table, "description": "The input of a driven coordinate that gives it."},
+            "momenta": {**table, "description": "The momentum dL/dq_dot of each held coordinate."},
+            "stability": {"type": "string", "description": "One of: " + ", ".join(STABILITY_WORDS) + "."},
+            "stable_where": conditions,
+        },
+        "required": ["at"],
+        "additionalProperties": False,
+    }
+    return {
+        "description": "The steady motions, in any order, each matched with tutgen's by its `at` values.",
+        "anyOf": [{"type": "array", "items": motion}, motion],
     }
 
 

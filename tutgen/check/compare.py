@@ -35,6 +35,7 @@ from tutgen.check.matrices import matrix_finding
 from tutgen.check.names import Path, entry_name, field_of, is_per_coordinate
 from tutgen.check.numeric import SEED, TRIALS
 from tutgen.check.scalars import ScalarMarking, UnknownName, Unreadable, answer_text
+from tutgen.check.steady import SteadyMarking
 from tutgen.check.verdicts import (
     ASKED_RESULTS,
     DEFAULT_ANSWER_TIMEOUT,
@@ -226,7 +227,10 @@ class _Marker(ScalarMarking):
 
     def mark_item(self, item: AnswerItem, path: Path, result: Any) -> ItemResult:
         remarks: list[str] = []
-        entries = self.walk(item.value, item.keypath, result, path)
+        if path[:1] == ("steady_motion",):
+            entries = self.steady(item, path, result)
+        else:
+            entries = self.walk(item.value, item.keypath, result, path)
         table = path[0] if path and path[0] in _OTHER_TABLE else None
         if table and any(e.status is Status.WRONG for e in entries):
             other = (_OTHER_TABLE[table], *path[1:])
@@ -256,6 +260,21 @@ class _Marker(ScalarMarking):
             ]
         status = worst([e.status for e in entries])
         return ItemResult(entry_name(path), status, tuple(entries), tuple(remarks), str(item.location))
+
+    def steady(self, item: AnswerItem, path: Path, result: Any) -> list[EntryResult]:
+        """``steady_motion``: its motions matched by value, not by place (:mod:`tutgen.check.steady`)."""
+        if len(path) > 1:
+            self.error(
+                item.keypath,
+                f"'{item.key}' names a part of steady_motion by its place in tutgen's list; answer "
+                "`steady_motion` as a whole: a list of steady motions, each found by its values (`at:`)",
+                key=True,
+            )
+            raise _Stop
+        entries = SteadyMarking(self, self.walk).mark(item.value, item.keypath, result, path)
+        if entries is None:
+            raise _Stop
+        return entries
 
     def lookup(self, path: Path) -> Any:
         node: Any = self.ref.results

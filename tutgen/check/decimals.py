@@ -44,7 +44,7 @@ def half_unit(literal: str, figures: int) -> Decimal | None:
         return None
     if value == 0:
         return None
-    mantissa = re.split(r"[eE]", literal)[0].replace(".", "").lstrip("0")
+    mantissa = re.split(r"[eE]", literal)[0].lstrip("+-").replace(".", "").lstrip("0")
     written = len(mantissa)
     return Decimal(5).scaleb(value.adjusted() - max(written, figures))
 

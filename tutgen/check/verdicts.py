@@ -43,6 +43,7 @@ ASKED_RESULTS = {
     "equations_of_motion": ("equations_of_motion",),
     "matrix_form": ("mass_matrix", "coriolis_vector", "gravity_vector"),
     "christoffel": ("christoffel",),
+    "steady_motion": ("steady_motion",),
 }
 
 
@@ -118,6 +119,7 @@ class Reference:
     key: MarkingKey = field(default_factory=MarkingKey)  # the instructor's marking key
     figures: int = PRINTED_FIGURES  # the significant figures the spec's solution prints decimals with
     answer_timeout: float | None = DEFAULT_ANSWER_TIMEOUT  # seconds per entry (None: no limit)
+    angles: frozenset[str] = frozenset()  # the coordinates that are angles (a steady value up to 2 pi)
 
 
 def reference_from(system: Any, derivation: Any, spec: str) -> Reference:
@@ -144,6 +146,7 @@ def reference_from(system: Any, derivation: Any, spec: str) -> Reference:
         forces=frozenset(forces),
         asked=derived_ask(system, doc["results"]),
         figures=getattr(system, "significant_figures", None) or PRINTED_FIGURES,
+        angles=frozenset(c.name for c in system.coordinates if c.dimension == "angle"),
     )
 
 

@@ -66,6 +66,7 @@ RESULT_KEYS = (
     "christoffel",
     "christoffel_first_kind",
     "newton_euler",
+    "steady_motion",
 )
 #: The keys of a tolerance.
 TOLERANCE_KEYS = ("rel_tol", "abs_tol", "rounded")
