@@ -306,3 +306,33 @@ def test_rotor_is_all_cyclic_and_needs_no_torque() -> None:
     (state,) = st.states
     assert state.required == (("phi", 0),) and state.verdict == "neutral"
     assert [str(u) for u, _ in state.inputs] == ["tau"] and state.inputs[0][1] == 0
+
+
+def test_free_hoop_reduced_stiffness_is_printed_as_a_textbook_fraction() -> None:
+    """The tilted bead's K_r: its value is the expression Routh's reduction gave before it was tidied,
+    and its form is the textbook's, m (Omega^4 R^2 - g^2)((M + 2m) Omega^4 R^2 + 6 m g^2) over
+    Omega^2 ((M + 2m) Omega^4 R^2 - 2 m g^2): the conjugate pair multiplied out, M + 2m collected."""
+    from tutgen.engine.analysis.steady import textbook
+
+    system, d, _ = solved(FREE)
+    sym = {p.symbol: sp.Symbol(p.name, positive=True) for p in system.parameters}
+    m, big_m, big_r, g, w = (sp.Symbol(n, positive=True) for n in ("m", "M", "R", "g", "Omega"))
+    old = (
+        m
+        * (w**2 * big_r - g)
+        * (w**2 * big_r + g)
+        * (big_m * w**4 * big_r**2 + 2 * w**4 * big_r**2 * m + 6 * g**2 * m)
+        / (w**2 * (big_m * w**4 * big_r**2 + 2 * w**4 * big_r**2 * m - 2 * g**2 * m))
+    )
+    tilted = [x for x in d.analysis.steady.states if x.exists_where]
+    assert len(tilted) == 2
+    for x in tilted:
+        k = x.stiffness[0, 0].xreplace(sym)
+        assert sp.cancel(k - old) == 0
+        num, den = sp.fraction(k)
+        assert set(sp.Mul.make_args(num)) >= {m, w**4 * big_r**2 - g**2}
+        assert (big_m + 2 * m) * w**4 * big_r**2 - 2 * m * g**2 in sp.Mul.make_args(den)
+    # the tidying keeps every value: a sign turned into a bracket, a sum collected, a product left alone
+    for v in (-m * big_r * (w**2 * big_r - g), m * w * big_r**2 + big_m * w * big_r**2 / 2 - m * g**2 / w**3, m * g):
+        assert sp.cancel(textbook(v) - v) == 0
+    assert textbook(-m * big_r * (w**2 * big_r - g)) == m * big_r * (g - w**2 * big_r)

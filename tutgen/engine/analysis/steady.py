@@ -240,6 +240,89 @@ def _signs(v: sp.Expr) -> sp.Expr:
     return out if sp.expand(out - v) == 0 or sp.cancel(out - v) == 0 else v
 
 
+def textbook(v: sp.Expr) -> sp.Expr:
+    """``v`` in the form a textbook prints, its value unchanged: a factor pair (a - b)(a + b) as
+    a^2 - b^2, the terms of each sum that share a monomial collected over it ((M + 2 m) Omega^4 R^2 +
+    6 m g^2, not M Omega^4 R^2 + 2 m Omega^4 R^2 + 6 m g^2), and a negative coefficient turned into a
+    factor of mostly negative terms (m R (g - Omega^2 R), not -m R (-g + Omega^2 R))."""
+    if not isinstance(v, sp.Expr) or v.is_number or sp.count_ops(v) > 300:
+        return v
+    if isinstance(v, sp.Add) and sp.fraction(sp.together(v))[1] != 1:
+        # m R^2 w^2 - m g^2/w^2 over its common denominator: m (R^2 w^4 - g^2)/w^2
+        over = sp.factor(sp.together(v))
+        if not isinstance(over, sp.Add) and sp.count_ops(over) <= sp.count_ops(v) + 2:
+            return textbook(over)
+    if isinstance(v, sp.Add):
+        out = _collected(v)
+    else:
+        num, den = sp.fraction(v)
+        top, bottom = _paired(list(sp.Mul.make_args(num))), _paired(list(sp.Mul.make_args(den)))
+        top, bottom = [_collected(f) for f in top], [_collected(f) for f in bottom]
+        coefficient = [f for f in top if f.is_number]
+        if coefficient and sp.Mul(*coefficient).is_negative:
+            heavy = next((i for i, f in enumerate(top) if _negative_heavy(f)), None)
+            if heavy is not None:
+                top = [-f if f.is_number else f for f in top]
+                top[heavy] = _collected(sp.expand(-top[heavy]))
+        out = sp.Mul(*top) / sp.Mul(*bottom) if bottom else sp.Mul(*top)
+    try:
+        same = sp.cancel(sp.together(out - v)) == 0
+    except (sp.PolynomialError, TypeError):
+        same = False
+    return out if same else v
+
+
+def _paired(factors: list[sp.Expr]) -> list[sp.Expr]:
+    """Factors with each pair of sums whose product has two terms ((a - b)(a + b)) multiplied out."""
+    out = list(factors)
+    i = 0
+    while i < len(out):
+        j = i + 1
+        while j < len(out):
+            a, b = out[i], out[j]
+            if isinstance(a, sp.Add) and isinstance(b, sp.Add) and len(sp.Add.make_args(sp.expand(a * b))) == 2:
+                out[i] = sp.expand(a * b)
+                del out[j]
+                continue
+            j += 1
+        i += 1
+    return out
+
+
+def _collected(f: sp.Expr) -> sp.Expr:
+    """A sum with the terms that share a monomial collected over it, when what is left of each is a
+    parameter or a number (M + 2 m): the largest such group first, greedily."""
+    if not isinstance(f, sp.Add):
+        return f
+    terms = list(sp.Add.make_args(f))
+    best: tuple[int, int, sp.Expr, list[sp.Expr]] | None = None
+    for i in range(len(terms)):
+        for j in range(i + 1, len(terms)):
+            g = sp.gcd(terms[i], terms[j])
+            if g.is_number:
+                continue
+            group = [t for t in terms if _is_simple(t / g)]
+            if len(group) >= 2 and len(group) < len(terms) + (0 if len(terms) > 2 else 1):
+                score = (len(group), int(sp.Poly(g).total_degree()) if g.is_polynomial() else 0)
+                if best is None or score > best[:2]:
+                    best = (*score, g, group)
+    if best is None:
+        return f
+    _, _, g, group = best
+    rest = [t for t in terms if t not in group]
+    inner = sp.Add(*[sp.cancel(t / g) for t in group])
+    if len(sp.Add.make_args(inner)) < 2:
+        return f
+    return sp.Add(sp.Mul(inner, g), _collected(sp.Add(*rest)) if rest else sp.Integer(0))
+
+
+def _is_simple(q: sp.Expr) -> bool:
+    """A number times at most one symbol to the first power (m, 2 m, M/2): what collects into M + 2 m."""
+    q = sp.cancel(q)
+    _, rest = q.as_coeff_Mul()
+    return rest == 1 or (isinstance(rest, sp.Symbol))
+
+
 class _Singular(Exception):
     """The free coordinates' momenta do not depend on their rates here (A_cc singular: a pole of the
     coordinates, such as theta = 0 of a spherical pendulum)."""
@@ -292,7 +375,7 @@ def _reduced(
         k_ss = k_ss - d_sf * x * p_fs
 
     def clean(m: sp.Matrix) -> sp.ImmutableMatrix:
-        return sp.ImmutableMatrix(m.applyfunc(lambda v: _short(sp.factor(sp.cancel(v)).xreplace(steady))))
+        return sp.ImmutableMatrix(m.applyfunc(lambda v: textbook(_short(sp.factor(sp.cancel(v)).xreplace(steady)))))
 
     return clean(m_ss), clean(d_ss), clean(k_ss)
 
@@ -460,7 +543,7 @@ def _state(
             if len(solved) == 1:
                 inputs.append((u, _shortest(solved[0])))
     p = _momenta(d, [c for c, _ in held]) if held else sp.Matrix([])
-    momenta = tuple((c.name, _shortest(p[k].xreplace(point))) for k, (c, _) in enumerate(held))
+    momenta = tuple((c.name, textbook(_shortest(p[k].xreplace(point)))) for k, (c, _) in enumerate(held))
     point_inputs = dict(point)
     point_inputs.update(zeroed)
     decided = [d.numeric(x) for x in exists]

@@ -136,10 +136,10 @@ def _stability(c: SolutionContext, state: SteadyState) -> list[dict[str, Any]]:
     if state.mass.shape[0] and state.mass != sp.zeros(*state.mass.shape):
         # at a pole the matrices are those of the rest state on the axis, not of Routh's reduction
         sub = "" if state.pole else "_r"
-        lines = [f"M{sub} = {tex(num(state.mass))}"]
+        lines = [f"M{sub} = {_matrix(c, num(state.mass))}"]
         if state.damping != sp.zeros(*state.damping.shape):
-            lines.append(f"D{sub} = {tex(num(state.damping))}")
-        lines.append(f"K{sub} = {tex(num(state.stiffness))}")
+            lines.append(f"D{sub} = {_matrix(c, num(state.damping))}")
+        lines.append(f"K{sub} = {_matrix(c, num(state.stiffness))}")
         if state.pole:
             blocks.append(para(text("At rest on the axis, the linear model of the others has")))
         blocks.append(display(",\\quad ".join(lines)))
@@ -172,6 +172,55 @@ def _stability(c: SolutionContext, state: SteadyState) -> list[dict[str, Any]]:
         where = ",\\quad ".join(tex(num(x)) for x in state.stable_where)
         blocks.append(para(text("It is stable where "), math(where), text(".")))
     return blocks
+
+
+def _matrix(c: SolutionContext, m: sp.MatrixBase) -> str:
+    """A reduced matrix with each entry in the engine's textbook form (steady.textbook): the printer's
+    teacher's order would expand the collected brackets of a factored fraction again."""
+    rows = [" & ".join(_entry(c, e) for e in m.row(i)) for i in range(m.rows)]
+    return r"\begin{bmatrix}" + r" \\ ".join(rows) + r"\end{bmatrix}"
+
+
+def _entry(c: SolutionContext, e: sp.Expr) -> str:
+    num, den = sp.fraction(e)
+    if (
+        e.is_number
+        or isinstance(e, sp.Add)
+        or not any(isinstance(f, sp.Add) for f in (*sp.Mul.make_args(num), *sp.Mul.make_args(den)))
+    ):
+        return c.tex(e)
+    top, bottom = _product(c, num), _product(c, den)
+    if den == 1:
+        return top
+    sign = ""
+    if top.startswith("- "):
+        sign, top = "- ", top[2:]
+    return f"{sign}\\frac{{{top}}}{{{bottom}}}"
+
+
+def _product(c: SolutionContext, p: sp.Expr) -> str:
+    """A product factor by factor, each sum in brackets with its positive terms first."""
+    factors = list(sp.Mul.make_args(p))
+    coefficient = sp.Mul(*[f for f in factors if f.is_number])
+    plain = sp.Mul(*[f for f in factors if not f.is_number and not isinstance(f, sp.Add)])
+    sums = [f for f in factors if isinstance(f, sp.Add)]
+    head = coefficient * plain
+    text = "" if head == 1 else "- " if head == -1 else c.tex(head)
+    if text and text != "- ":
+        text += " "
+    for f in sums:
+        text += "\\left(" + _sum(c, f) + "\\right) "
+    return text.strip() or "1"
+
+
+def _sum(c: SolutionContext, f: sp.Expr) -> str:
+    terms = sorted(sp.Add.make_args(f), key=lambda t: t.could_extract_minus_sign())
+    out = ""
+    for t in terms:
+        negative = t.could_extract_minus_sign()
+        body = c.tex(-t if negative else t)
+        out += (" - " if negative else (" + " if out else "")) + body
+    return out.strip()
 
 
 def _complex(z: complex) -> str:
