@@ -11,7 +11,7 @@ import sympy as sp
 
 from tutgen.engine.analysis import SteadyMotion, SteadyState
 from tutgen.engine.steps import StepKind
-from tutgen.render.blocks import Part, SolutionContext, display, math, para, section, strong, subheading, text
+from tutgen.render.blocks import Part, SolutionContext, display, math, para, section, strong, text
 from tutgen.render.wording import engine_parts
 
 __all__ = ["steady_motion"]
@@ -65,16 +65,21 @@ def _verdict(c: SolutionContext, state: SteadyState) -> list[Part]:
     return [strong(label), text(": "), *engine_parts(f"{state.reason}.", c.tex)]
 
 
-def _state(c: SolutionContext, st: SteadyMotion, state: SteadyState, shared: bool) -> list[dict[str, Any]]:
+def _state(
+    c: SolutionContext, st: SteadyMotion, state: SteadyState, shared: bool, label: str | None = None
+) -> list[dict[str, Any]]:
     """One steady motion: its values, where it exists, what it needs (unless ``shared``: said once for
-    all), its conserved momentum and its stability."""
+    all), its conserved momentum and its stability. ``label`` leads the line of its values ("Steady
+    motion 2: theta = pi"), so that it is never a heading left alone at the foot of a page."""
     tex, num = c.tex, c.num
     coords = {q.name: q for q in c.s.coordinates}
     blocks: list[dict[str, Any]] = []
     if state.at:
         anywhere = "\\text{any}"
         at = ",\\ ".join(f"{coords[n].latex} = {anywhere if n in st.free_others else tex(num(v))}" for n, v in state.at)
-        blocks.append(display(at))
+        blocks.append(para(strong(label), text(": "), math(at), text(".")) if label else display(at))
+    elif label:
+        blocks.append(para(strong(label)))
     if state.exists_where:
         shown = ",\\quad ".join(tex(x) for x in state.exists_where)
         trig = "a cosine" if any(v.has(sp.acos) for _, v in state.at) else "a sine"
@@ -167,6 +172,20 @@ def _stability(c: SolutionContext, state: SteadyState) -> list[dict[str, Any]]:
                 text("."),
             )
         )
+    if state.verdict == "conditional" and state.stable_where:
+        where = ",\\quad ".join(tex(num(x)) for x in state.stable_where)
+        blocks.append(
+            para(
+                strong("Stable under a condition"),
+                text(
+                    ": the sign of K depends on the parameters; it is positive definite, and this steady "
+                    "motion stable, where "
+                ),
+                math(where),
+                text("."),
+            )
+        )
+        return blocks
     blocks.append(para(*_verdict(c, state)))
     if state.stable_where:
         where = ",\\quad ".join(tex(num(x)) for x in state.stable_where)
@@ -195,7 +214,7 @@ def _entry(c: SolutionContext, e: sp.Expr) -> str:
     sign = ""
     if top.startswith("- "):
         sign, top = "- ", top[2:]
-    return f"{sign}\\frac{{{top}}}{{{bottom}}}"
+    return f"{sign}\\dfrac{{{top}}}{{{bottom}}}"  # full size inside a matrix
 
 
 def _product(c: SolutionContext, p: sp.Expr) -> str:
@@ -279,9 +298,8 @@ def steady_motion(c: SolutionContext) -> dict[str, Any] | None:
     if shared:
         blocks += [para(text("At every steady motion below, the held coordinates need:")), *_needs(c, st, existing[0])]
     for i, state in enumerate(st.states, start=1):
-        if len(st.states) > 1:
-            blocks.append(subheading(f"Steady motion {i}"))
-        blocks += _state(c, st, state, shared)
+        label = f"Steady motion {i}" if len(st.states) > 1 else None
+        blocks += _state(c, st, state, shared, label)
     angles = [n for n in st.others if coords[n].dimension == "angle" and n not in st.free_others]
     if angles and st.states:
         blocks.append(para(text("Each angle stands for its family, plus any multiple of "), math("2\\pi"), text(".")))
