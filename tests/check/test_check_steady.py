@@ -233,3 +233,8 @@ def test_steady_motion_is_graded_without_a_key_when_the_spec_asks_for_it() -> No
 
 def test_half_unit_of_a_negative_decimal_counts_its_digits_not_its_sign() -> None:
     assert half_unit("-1.058", 4) == half_unit("1.058", 4)
+
+
+def test_a_marking_key_may_ask_for_steady_motion_alone() -> None:
+    result = mark_text(reference(DRIVEN), RIGHT, key="ask: [steady_motion]\n")
+    assert [(i.name, i.status) for i in result.items] == [("steady_motion", Status.CORRECT)]
