@@ -238,3 +238,21 @@ def test_half_unit_of_a_negative_decimal_counts_its_digits_not_its_sign() -> Non
 def test_a_marking_key_may_ask_for_steady_motion_alone() -> None:
     result = mark_text(reference(DRIVEN), RIGHT, key="ask: [steady_motion]\n")
     assert [(i.name, i.status) for i in result.items] == [("steady_motion", Status.CORRECT)]
+
+
+def test_a_stability_tutgen_does_not_decide_is_not_marked_wrong() -> None:
+    """The heavy top at theta = 0 spins about its own axis: tutgen leaves its stability undetermined
+    (and says why), so a student's verdict on it cannot be marked either way."""
+    import yaml
+
+    from tests.models import system_of
+    from tutgen.check.verdicts import reference_from
+    from tutgen.engine.pipeline import derive
+
+    data = yaml.safe_load((SPECS / "examples" / "g-heavy-symmetric-top.yaml").read_text(encoding="utf-8"))
+    data["ask"] = ["equations_of_motion", "steady_motion"]
+    system = system_of(data)
+    ref = reference_from(system, derive(system), "top.yaml")
+    marks = verdicts(mark_text(ref, "steady_motion: [{at: {theta: 0}, stability: stable}]\n"))
+    status, feedback = marks["steady_motion[1].stability"]
+    assert status is Status.CANNOT_EVALUATE and "spinning about its own axis" in feedback

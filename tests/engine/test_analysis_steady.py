@@ -336,3 +336,18 @@ def test_free_hoop_reduced_stiffness_is_printed_as_a_textbook_fraction() -> None
     for v in (-m * big_r * (w**2 * big_r - g), m * w * big_r**2 + big_m * w * big_r**2 / 2 - m * g**2 / w**3, m * g):
         assert sp.cancel(textbook(v) - v) == 0
     assert textbook(-m * big_r * (w**2 * big_r - g)) == m * big_r * (g - w**2 * big_r)
+
+
+def test_steady_motion_of_a_closed_loop_is_refused_at_its_ask_item() -> None:
+    """A four-bar's loop-closing joint: the steady states would have to satisfy the loop too, and its
+    constraint forces enter every row, so `steady_motion` is a spec error at the `ask` item."""
+    text = open(SPECS / "examples" / "n-four-bar-crank-rocker.yaml", encoding="utf-8").read()
+    text += "\nask: [equations_of_motion, steady_motion]\n"
+    from tutgen.spec.validate import load_system_text
+
+    with pytest.raises(SpecErrors) as err:
+        load_system_text(text, path="four-bar.yaml")
+    line = len(text.splitlines())
+    message = str(err.value)
+    assert f"four-bar.yaml:{line}:28: error: `steady_motion` applies to an unconstrained system" in message
+    assert "the loop-closing joint 'B'" in message

@@ -365,6 +365,8 @@ class SteadyMarking:
         if word == expected:
             return self.m.right(path, kp, value, expected, "exact: the same verdict")
         reason = state.get("reason")
+        if expected == "undetermined":  # tutgen does not decide it: neither right nor wrong
+            return self.m.unevaluable(path, kp, value, expected, f"tutgen does not decide this stability ({reason})")
         feedback = f"expected '{expected}'" + (f" ({reason})" if reason else "")
         return self.m.wrong(path, kp, value, expected, feedback)
 
