@@ -39,6 +39,7 @@ from tutgen.check.numeric import SEED, evaluate
 from tutgen.check.scalars import ScalarMarking, UnknownName, Unreadable, answer_text
 from tutgen.check.verdicts import EntryResult, Status
 from tutgen.engine.tidy import random_states
+from tutgen.errors import SpecError
 from tutgen.spec.expr import did_you_mean
 from tutgen.spec.loader import KeyPath
 
@@ -91,6 +92,7 @@ class SteadyMarking:
         self.m = marker
         self.walk = walk
         self.ref = marker.ref
+        self.fixed: set[sp.Symbol] = set(self.ref.state)
 
     # -- the item ---------------------------------------------------------------------------
 
@@ -107,6 +109,8 @@ class SteadyMarking:
             return None
         states = list(result["states"])
         angles = self.ref.angles
+        held = {self.ref.symbols[f"{n}_dot"] for n in result["rates"]}
+        self.fixed = set(self.ref.state) - held  # what a steady value may not hold
         wanted = [n for n in result["others"] if n not in result["free_others"]]
         out: list[EntryResult] = []
         claimed: dict[int, int] = {}  # results state -> the answered motion that matched it first
@@ -265,8 +269,10 @@ class SteadyMarking:
         parsed = self.m.read(value, keypath, symbolic=True)
         if parsed is None:
             raise Unreadable(_error(self.m, keypath, "cannot read the answer"))
-        if parsed.expr.free_symbols & self.ref.state:
-            raise Unreadable(_error(self.m, keypath, "a steady value holds no coordinate or rate"))
+        if parsed.expr.free_symbols & self.fixed:
+            raise Unreadable(
+                _error(self.m, keypath, "a steady value holds no coordinate, acceleration or rate but a held one")
+            )
         return parsed.expr, False
 
     def gives(self, parsed: dict[str, _Read], state: dict[str, Any], angles: frozenset[str]) -> bool:
@@ -456,9 +462,7 @@ def _word(value: Any) -> str | None:
     return STABILITY_WORDS.get(text)
 
 
-def _error(marker: ScalarMarking, keypath: KeyPath, message: str) -> Any:
-    from tutgen.errors import SpecError
-
+def _error(marker: ScalarMarking, keypath: KeyPath, message: str) -> SpecError:
     return SpecError(marker.sheet.location(keypath), message)
 
 
