@@ -40,7 +40,7 @@ from tutgen.check.scalars import ScalarMarking, UnknownName, Unreadable, answer_
 from tutgen.check.verdicts import EntryResult, Status
 from tutgen.engine.tidy import random_states
 from tutgen.errors import SpecError
-from tutgen.spec.expr import did_you_mean
+from tutgen.spec.expr import ExprError, did_you_mean
 from tutgen.spec.loader import KeyPath
 
 __all__ = ["STABILITY_WORDS", "STATE_FIELDS", "SteadyMarking"]
@@ -278,7 +278,10 @@ class SteadyMarking:
     def gives(self, parsed: dict[str, _Read], state: dict[str, Any], angles: frozenset[str]) -> bool:
         """Whether the answered values are those of ``state``, at random parameter values where it exists
         (a number without symbols: also when it is the result as printed, rounded)."""
-        values = {n: self.m.result_expr(v) for n, v in state["at"].items()}
+        try:
+            values = {n: self.m.result_expr(v) for n, v in state["at"].items()}
+        except ExprError:
+            return False
         coords = {self.ref.symbols[n]: v for n, v in values.items()}
         symbols: set[sp.Symbol] = set()
         for r in parsed.values():
@@ -312,7 +315,7 @@ class SteadyMarking:
 
     def points(self, symbols: set[sp.Symbol], conditions: list[str], count: int) -> list[_State]:
         """Up to ``count`` random parameter values where every condition of the results holds."""
-        read = [self.condition(c) for c in conditions]
+        read = [c for c in (self.result_condition(t) for t in conditions) if c is not None]
         out: list[_State] = []
         for point in random_states(symbols | {s for c in read for s in c.free_symbols}, _CANDIDATES, SEED):
             if all(_truth(c, point) is True for c in read):
@@ -378,6 +381,14 @@ class SteadyMarking:
 
     # -- conditions ------------------------------------------------------------------------------
 
+    def result_condition(self, text: str) -> sp.Expr | None:
+        """A condition of the results as the expression >= 0 where it holds; None when it is no single
+        inequality of the grammar (never an error of the answers file)."""
+        try:
+            return self.condition(text)
+        except (ValueError, ExprError):
+            return None
+
     def condition(self, text: str, keypath: KeyPath | None = None) -> sp.Expr:
         """``a <= b`` as the expression that is >= 0 where it holds (b - a); a result's when no keypath."""
         found = _RELATION_RE.findall(text)
@@ -412,7 +423,10 @@ class SteadyMarking:
             return self.m.wrong(path, kp, value, shown, str(exc))
         except Unreadable as exc:
             return self.m.wrong(path, kp, value, shown, exc.feedback)
-        correct = [self.condition(c) for c in result]
+        read = [self.result_condition(c) for c in result]
+        correct = [c for c in read if c is not None]
+        if len(correct) < len(read):
+            return self.m.unevaluable(path, kp, value, shown, "tutgen's condition is not an inequality it can compare")
         try:
             with answer_deadline(self.ref.answer_timeout):
                 symbols = {s for e in (*given, *correct) for s in e.free_symbols}
