@@ -19,6 +19,14 @@ Conventions (the sign of every term below follows from them):
   not turn with q_i, it only translates: the moment of that subtree about its own joint is subtracted.
 - Bodies placed by positions and orientations (no joints) have no named reactions: the D'Alembert
   forces are projected on the partial velocities (virtual work, Kane's method) instead.
+- A constrained spec (issue 21) adds its constraint reactions, in its multipliers lambda. A loop-closing
+  pin's loop-closure equations are gap = r_parent(parent_at) - r_child(child_at) = 0 (components x, y, z
+  with multipliers lambda_k), so A^T lambda is the generalized force of the force lambda = (lambda_x,
+  lambda_y, lambda_z) on the PARENT at its point and -lambda on the CHILD at its point: the pin's reaction
+  in the convention above (parent on child) is -lambda. A constraint given as an expression names no force
+  on a body: its generalized force (A^T lambda)_i enters the equation of q_i as a drive does. Each
+  equation then reads (H q_ddot + C + G - Q - A^T lambda)_i = 0, compared with Lagrange's with
+  multipliers row by row, and, with the reduced route's lambda and accelerations, at consistent states.
 
 Each equation is put in Lagrange's contract, (H q_ddot + C + G - Q)_i = 0, and compared with it.
 """
@@ -26,9 +34,14 @@ Each equation is put in Lagrange's contract, (H q_ddot + C + G - Q)_i = 0, and c
 from __future__ import annotations
 
 import dataclasses
+import random
+from typing import Any
 
+import mpmath
 import sympy as sp
 
+from tutgen.engine.constraints import ConstrainedDynamics, multiplier_symbol
+from tutgen.engine.constraints.kinematics import consistent_states
 from tutgen.engine.derivation import Check, Derivation
 from tutgen.engine.inertia import BodyInertia, body_inertia
 from tutgen.engine.kinematics import Kinematics
@@ -37,6 +50,7 @@ from tutgen.engine.ne_types import (
     ZERO,
     AppliedLoad,
     BodyBalance,
+    ConstraintReaction,
     CoordinateEquation,
     JointReaction,
     Motion,
@@ -55,6 +69,7 @@ __all__ = [
     "PROJECTION_REMARK",
     "AppliedLoad",
     "BodyBalance",
+    "ConstraintReaction",
     "CoordinateEquation",
     "JointReaction",
     "Motion",
@@ -65,7 +80,11 @@ __all__ = [
 
 
 def derive_newton_euler(
-    system: System, derivation: Derivation, kinematics: Kinematics | None = None, planar: bool = True
+    system: System,
+    derivation: Derivation,
+    kinematics: Kinematics | None = None,
+    planar: bool = True,
+    constraints: ConstrainedDynamics | None = None,
 ) -> NewtonEuler:
     """Derive the equations of motion body by body with Newton-Euler, and prove they equal Lagrange's.
 
@@ -76,6 +95,10 @@ def derive_newton_euler(
     kinematics : the frames Lagrange's route built, reused; built again when omitted.
     planar : also build the scalar form of a planar system (:mod:`tutgen.engine.planar_ne`), which
         costs about a third more; leave it out when Newton–Euler is derived only for the agreement check.
+    constraints : a constrained spec's two routes (``Derivation.constraints``), with ``system`` the system
+        whose constraints include the loop-closure equations (``with_loop_closures``): the constraint
+        reactions then enter the balances (the module's conventions), the equations are compared with
+        Lagrange's with multipliers, and ``reduction`` checks them with the reduced route's lambda.
 
     Returns
     =======
@@ -111,8 +134,14 @@ def derive_newton_euler(
     inertia = {bi.name: bi for bi in (derivation.inertia or tuple(body_inertia(b) for b in system.bodies))}
     kin = kinematics or Kinematics(system, {name: bi.com for name, bi in inertia.items()})
     rates = [*(c.qdd for c in system.coordinates), *(c.qd for c in system.coordinates)]
-    builder = _Builder(system, kin, inertia, rates)
-    ne = builder.build(derivation.equations_of_motion)
+    builder = _Builder(system, kin, inertia, rates, constraints)
+    lagrange = derivation.equations_of_motion
+    if constraints is not None:  # Lagrange's with multipliers: (H q_ddot + C + G - Q)_i = (A^T lambda)_i
+        lagrange = sp.ImmutableMatrix(sp.Matrix(lagrange) - sp.Matrix(constraints.constraint_forces))
+    ne = builder.build(lagrange)
+    if constraints is not None:
+        checkpoint("Newton-Euler: with the reduced route's multipliers")
+        ne = dataclasses.replace(ne, reduction=_reduction_agreement(system, constraints, ne.equations_of_motion))
     if not planar:
         return ne
     checkpoint("Newton-Euler: the planar form")
@@ -171,9 +200,15 @@ def _unknowns(letter: str, joint: str) -> Vec:
 
 class _Builder:
     def __init__(
-        self, system: System, kin: Kinematics, inertia: dict[str, BodyInertia], rates: list[sp.Symbol]
+        self,
+        system: System,
+        kin: Kinematics,
+        inertia: dict[str, BodyInertia],
+        rates: list[sp.Symbol],
+        constraints: ConstrainedDynamics | None = None,
     ) -> None:
         self.system = system
+        self.constraint_reactions = constraint_reactions(system, kin, constraints) if constraints else ()
         self.kin = kin
         self.inertia = inertia
         self.rates = rates
@@ -362,6 +397,12 @@ class _Builder:
             on_a = Vec(factor * d)
             add(a.body, AppliedLoad(f"damper '{damper.name}'", on_a, Vec(pa), ZERO))
             add(b.body, AppliedLoad(f"damper '{damper.name}'", Vec(-on_a), Vec(pb), ZERO))
+        for cr in self.constraint_reactions:  # a loop-closing pin: lambda on the parent, -lambda on the child
+            if cr.kind == "pin":
+                assert cr.parent and cr.child and cr.point is not None and cr.child_point is not None
+                assert cr.on_parent is not None and cr.on_child is not None
+                add(cr.parent, AppliedLoad(f"reaction at joint '{cr.name}'", cr.on_parent, cr.point, ZERO))
+                add(cr.child, AppliedLoad(f"reaction at joint '{cr.name}'", cr.on_child, cr.child_point, ZERO))
         return out
 
     def along_coordinates(self) -> list[sp.Expr]:
@@ -384,6 +425,10 @@ class _Builder:
                 rate = sum((sp.diff(damper.extension, qj) * qdj for qj, qdj in zip(q, qd, strict=True)), sp.Integer(0))
                 dissipation = damper.coefficient * rate**2 / 2
                 out = [o - sp.diff(dissipation, qdi) for o, qdi in zip(out, qd, strict=True)]
+        # a constraint given as an expression: its generalized force (A^T lambda)_i, as a drive's
+        for cr in self.constraint_reactions:
+            if cr.kind == "generalized":
+                out = [o + f for o, f in zip(out, cr.generalized_force, strict=True)]
         # a motor's rotor takes n^2 J_m q_ddot_i of the drive's effort to accelerate itself (its reflected
         # inertia): the link receives Q_i - n^2 J_m q_ddot_i through the joint (gyroscopic terms neglected)
         for joint in system.joints:
@@ -425,7 +470,7 @@ class _Builder:
             )
         eom = sp.ImmutableMatrix([e.equation for e in equations])
         checkpoint("Newton-Euler: agreement with Lagrange")
-        agreement = _agreement(self.system, eom, lagrange_eom)
+        agreement = _agreement(self.system, eom, lagrange_eom, bool(self.constraint_reactions))
         order = [b.name for b in self.system.bodies]
         ne = NewtonEuler(
             method=method,
@@ -436,6 +481,7 @@ class _Builder:
             equations_of_motion=eom,
             agreement=agreement,
             remarks=tuple(self.remarks),
+            constraint_reactions=self.constraint_reactions,
         )
         return ne
 
@@ -660,9 +706,11 @@ class _Builder:
         return tuple(out)
 
 
-def _agreement(system: System, eom: sp.MatrixBase, lagrange: sp.MatrixBase) -> Check:
+def _agreement(system: System, eom: sp.MatrixBase, lagrange: sp.MatrixBase, constrained: bool = False) -> Check:
     """Each Newton-Euler equation minus Lagrange's must vanish: symbolically, or else numerically at
-    random states. A difference is a bug, reported with the coordinate it is about."""
+    random states. A difference is a bug, reported with the coordinate it is about. ``constrained``:
+    ``lagrange`` is Lagrange's with multipliers, H q_ddot + C + G - Q - A^T lambda (an identity in q, q_dot,
+    q_ddot and lambda, so any state will do)."""
     hows = []
     for i, coord in enumerate(system.coordinates):
         zero, how = is_zero(eom[i] - lagrange[i])
@@ -677,6 +725,132 @@ def _agreement(system: System, eom: sp.MatrixBase, lagrange: sp.MatrixBase) -> C
         hows.append(how)
     numeric = [c.name for c, h in zip(system.coordinates, hows, strict=True) if h.startswith("numerically")]
     detail = "The Newton–Euler equations agree with Lagrange's"
+    if constrained:
+        detail = (
+            "The Newton–Euler equations, with the constraint reactions, agree with Lagrange's with multipliers, "
+            "H q_ddot + C + G - Q = A^T lambda, row by row"
+        )
     if numeric:
         detail += f" (symbolically, and numerically at random states for {', '.join(numeric)})"
     return Check("newton_euler_equals_lagrange", True, detail)
+
+
+def constraint_reactions(system: System, kin: Kinematics, cd: ConstrainedDynamics) -> tuple[ConstraintReaction, ...]:
+    """The constraint reactions of a constrained spec (the module's conventions): each loop-closing pin's
+    force, then each constraint given as an expression, in the order of ``system.constraints`` (the
+    loop-closure equations first, named ``<joint>_x``, ...)."""
+    a = cd.kinematics.jacobian
+    names = [c.name for c in system.constraints]
+    n = len(system.coordinates)
+
+    def share(rows: list[int]) -> tuple[sp.Expr, ...]:
+        return tuple(
+            tidy(sp.Add(*(a[k, i] * multiplier_symbol(k + 1) for k in rows))) if rows else sp.Integer(0)
+            for i in range(n)
+        )
+
+    def where(body: str, at: sp.MatrixBase) -> Vec:
+        return Vec(sp.Matrix(at) if body == GROUND else kin.point(body, at))
+
+    out: list[ConstraintReaction] = []
+    pinned: set[int] = set()
+    for joint in system.loop_joints:
+        rows = [names.index(f"{joint.name}_{axis}") for axis in "xyz" if f"{joint.name}_{axis}" in names]
+        pinned.update(rows)
+        lam = Vec(
+            [
+                multiplier_symbol(names.index(f"{joint.name}_{x}") + 1) if f"{joint.name}_{x}" in names else 0
+                for x in "xyz"
+            ]
+        )
+        out.append(
+            ConstraintReaction(
+                name=joint.name,
+                kind="pin",
+                constraints=tuple(names[k] for k in rows),
+                multipliers=tuple(multiplier_symbol(k + 1) for k in rows),
+                generalized_force=share(rows),
+                parent=joint.parent,
+                child=joint.child,
+                point=where(joint.parent, joint.parent_at),
+                child_point=where(joint.child, joint.child_at),
+                on_parent=lam,
+                on_child=Vec(-lam),
+            )
+        )
+    for k, c in enumerate(system.constraints):
+        if k not in pinned:
+            out.append(ConstraintReaction(c.name, "generalized", (c.name,), (multiplier_symbol(k + 1),), share([k])))
+    return tuple(out)
+
+
+#: consistent states at which Newton-Euler is checked with the reduced route's multipliers
+_REDUCTION_STATES = 3
+_REDUCTION_TOLERANCE = mpmath.mpf("1e-15")
+
+
+def _reduction_agreement(system: System, cd: ConstrainedDynamics, eom: sp.MatrixBase) -> Check:
+    """Newton-Euler's equations, every row, at consistent states with the reduced route's accelerations
+    (q_ddot_i solved from H_r q_ddot_i + C_r + G_r = Q_r, then q_ddot = T q_ddot_i + T_dot q_dot_i) and
+    its multipliers (lambda = A_d^-T (H q_ddot + C + G - Q)_d): each must vanish. A residual is a bug."""
+    ck = cd.kinematics
+    coords = system.coordinates
+    qd = [c.qd for c in coords]
+    qdd = [c.qdd for c in coords]
+    ind = ck.independent
+    qdd_i = [qdd[j] for j in ind]
+    rng = random.Random(11)
+    compiled: dict[sp.Expr, tuple[list[sp.Symbol], Any]] = {}
+
+    def num(e: sp.Expr, values: dict[sp.Symbol, mpmath.mpf]) -> mpmath.mpf:
+        if e not in compiled:
+            args = sorted(sp.sympify(e).free_symbols, key=sp.default_sort_key)
+            compiled[e] = (args, sp.lambdify(args, e, modules="mpmath"))
+        args, f = compiled[e]
+        return mpmath.mpf(f(*[values[x] for x in args]))
+
+    reduced = [sp.expand(e) for e in cd.equations_of_motion]
+    h_r = [[r.coeff(x) for x in qdd_i] for r in reduced]
+    rest = [r.xreplace(dict.fromkeys(qdd_i, 0)) for r in reduced]
+    worst = mpmath.mpf(0)
+    checked = 0
+    with mpmath.workdps(30):
+        for state in consistent_states(system, ck.functions, ck.dependent, _REDUCTION_STATES):
+            values = dict(state.values)
+            for j in ind:
+                values[qd[j]] = mpmath.mpf(rng.uniform(-1, 1))
+            for v, e in ck.rates.items():
+                values[v] = mpmath.mpf(sp.N(e.subs(values), 30))
+            hm = mpmath.matrix([[num(e, values) for e in row] for row in h_r])
+            rhs = mpmath.matrix([-num(e, values) for e in rest])
+            try:
+                acc_i = mpmath.lu_solve(hm, rhs)
+            except ZeroDivisionError:
+                continue
+            values.update({x: acc_i[k] for k, x in enumerate(qdd_i)})
+            t = ck.velocity_map
+            for j in range(len(coords)):
+                values[qdd[j]] = sum((num(t[j, k], values) * acc_i[k] for k in range(len(ind))), mpmath.mpf(0)) + num(
+                    cd.velocity_terms[j], values
+                )
+            lam = [num(e, values) for e in cd.multipliers_in_accelerations]
+            values.update(dict(zip(cd.multipliers, lam, strict=True)))
+            scale = 1 + max(abs(x) for x in [*acc_i, *lam])
+            for e in eom:
+                worst = max(worst, abs(num(e, values)) / scale)
+            checked += 1
+    if checked == 0:
+        return Check("newton_euler_equals_reduction", True, "not checked: no consistent state was found")
+    if worst > _REDUCTION_TOLERANCE:
+        raise AgreementError(
+            "internal check failed: the Newton-Euler equations with the constraint reactions do not hold at the "
+            f"reduced route's accelerations and multipliers (relative residual {mpmath.nstr(worst, 3)}); please "
+            "report this spec as a tutgen bug",
+            system.constraints[0].origin,
+        )
+    return Check(
+        "newton_euler_equals_reduction",
+        True,
+        "The Newton–Euler equations, every row, hold at the reduced equations' accelerations with the "
+        f"multipliers solved from them, at {checked} consistent states",
+    )
