@@ -131,6 +131,8 @@ def derive_newton_euler(
     inertia = {bi.name: bi for bi in (derivation.inertia or tuple(body_inertia(b) for b in system.bodies))}
     kin = kinematics or Kinematics(system, {name: bi.com for name, bi in inertia.items()})
     rates = [*(c.qdd for c in system.coordinates), *(c.qd for c in system.coordinates)]
+    # a constrained spec's multipliers are grouped like the rates: each coefficient is tidied on its own
+    rates += list(constraints.multipliers) if constraints is not None else []
     builder = _Builder(system, kin, inertia, rates, constraints)
     lagrange = derivation.equations_of_motion
     if constraints is not None:  # Lagrange's with multipliers: (H q_ddot + C + G - Q)_i = (A^T lambda)_i

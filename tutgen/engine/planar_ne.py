@@ -135,6 +135,7 @@ class _Planar:
         self.kin = kin
         self.ne = ne
         self.rates = [*(c.qdd for c in system.coordinates), *(c.qd for c in system.coordinates)]
+        self.rates += [x for cr in ne.constraint_reactions for x in cr.multipliers]  # grouped as in ne
         self.joints = {j.name: j for j in system.joints}
         self.reactions = {r.joint: r for r in ne.reactions}  # the recursive route's: axes and points
         self.order = [self.joints[r.joint] for r in ne.reactions]  # parents before children
