@@ -159,6 +159,25 @@ NEWTON_EULER = {
         "agrees_with_lagrange": {"const": True},
         "remarks": {"type": "array", "items": {"type": "string"}},
         "planar": PLANAR,
+        "constraint_reactions": {
+            "type": "object",
+            "description": "A constrained spec's constraint reactions, in its multipliers (issue 21)",
+            "additionalProperties": {
+                "type": "object",
+                "properties": {
+                    "kind": {"enum": ["pin", "generalized"]},
+                    "constraints": {"type": "array", "items": {"type": "string"}},
+                    "multipliers": {"type": "array", "items": {"type": "string"}},
+                    "generalized_force": VECTOR,
+                    "parent": {"type": "string"},
+                    "child": {"type": "string"},
+                    "force_on_parent": VEC3,
+                    "force_on_child": VEC3,
+                },
+                "required": ["kind", "constraints", "multipliers", "generalized_force"],
+            },
+        },
+        "agrees_with_reduction": {"const": True},
     },
     "required": ["method", "equations_of_motion", "agrees_with_lagrange"],
 }

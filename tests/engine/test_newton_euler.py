@@ -217,8 +217,10 @@ def assert_agrees(system: Any, d: Any) -> None:
     assert ne is not None
     assert ne.agrees_with_lagrange
     assert ne.equations_of_motion.shape == d.equations_of_motion.shape
+    # a constrained spec's: with its constraint reactions, Lagrange's with multipliers (issue 21)
+    reactions = d.constraints.constraint_forces if d.constraints is not None else [0] * len(system.coordinates)
     for i, coord in enumerate(system.coordinates):
-        zero, _ = is_zero(ne.equations_of_motion[i] - d.equations_of_motion[i])
+        zero, _ = is_zero(ne.equations_of_motion[i] - d.equations_of_motion[i] + reactions[i])
         assert zero, f"{coord.name}: NE {ne.equations_of_motion[i]} vs Lagrange {d.equations_of_motion[i]}"
     assert any(c.name == "newton_euler_equals_lagrange" and c.passed for c in d.checks)
 

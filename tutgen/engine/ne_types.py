@@ -99,6 +99,32 @@ class JointReaction:
 
 
 @dataclass(frozen=True)
+class ConstraintReaction:
+    """A constraint's force in the Newton-Euler balances (issue 21), in its multipliers.
+
+    A loop-closing pin (``kind`` "pin") carries a force through the pin: its loop-closure equations are
+    gap = r_parent(parent_at) - r_child(child_at) = 0, so A^T lambda is the generalized force of the force
+    ``on_parent`` = (lambda_x, lambda_y, lambda_z) applied at the parent's point and its opposite
+    ``on_child`` = -lambda at the child's point (Newton's third law); ``on_child`` is the pin's reaction in
+    the convention of :class:`JointReaction` (what the parent exerts on the child). A constraint given as
+    an expression (``kind`` "generalized") names no force on a body: its generalized force
+    ``generalized_force`` = (A^T lambda)_i for its own rows enters each coordinate's equation as a drive does.
+    """
+
+    name: str  # the loop-closing joint, or the spec's constraint
+    kind: str  # "pin" or "generalized"
+    constraints: tuple[str, ...]  # the constraints (loop-closure equations) whose multipliers these are
+    multipliers: tuple[sp.Symbol, ...]
+    generalized_force: tuple[sp.Expr, ...]  # its share of A^T lambda, per coordinate
+    parent: str | None = None  # a pin: the bodies it joins
+    child: str | None = None
+    point: Vec | None = None  # a pin: where it is on the parent (world components)
+    child_point: Vec | None = None  # and on the child (the same point on the constrained motion)
+    on_parent: Vec | None = None  # the pin's force on the parent: the multipliers
+    on_child: Vec | None = None  # on the child: minus the multipliers
+
+
+@dataclass(frozen=True)
 class CoordinateEquation:
     """The equation of one coordinate after the reactions are eliminated.
 
@@ -129,6 +155,9 @@ class ForceKind(StrEnum):
     ROTOR = "rotor"  # the reflected inertia n^2 J_m of a geared motor, taken from the drive
     REACTION = "reaction"  # a joint's constraint force/couple on its child (the unknowns)
     REACTION_ON_PARENT = "reaction_on_parent"  # the same, reversed, on the parent (third law)
+    LOOP_REACTION = "loop_reaction"  # a loop-closing pin's force on its child: minus the multipliers
+    LOOP_REACTION_ON_PARENT = "loop_reaction_on_parent"  # the pin's force on its parent: the multipliers
+    CONSTRAINT = "constraint"  # a spec constraint's generalized force (A^T lambda)_i at a coordinate's joint
     INERTIAL_FORCE = "inertial_force"  # D'Alembert's -m a_G, at G
     INERTIAL_COUPLE = "inertial_couple"  # D'Alembert's -I_G alpha
 
@@ -241,6 +270,10 @@ class NewtonEuler:
     agreement: Check
     remarks: tuple[str, ...] = ()
     planar: PlanarNewtonEuler | None = None  # the scalar form, when every motion is in the x-y plane
+    # issue 21: a constrained spec's constraint reactions, in its multipliers; its equations are then
+    # (H q_ddot + C + G - Q - A^T lambda)_i, and ``reduction`` checks them with the reduced route's lambda
+    constraint_reactions: tuple[ConstraintReaction, ...] = ()
+    reduction: Check | None = None
 
     @property
     def agrees_with_lagrange(self) -> bool:

@@ -19,6 +19,14 @@ Conventions (the sign of every term below follows from them):
   not turn with q_i, it only translates: the moment of that subtree about its own joint is subtracted.
 - Bodies placed by positions and orientations (no joints) have no named reactions: the D'Alembert
   forces are projected on the partial velocities (virtual work, Kane's method) instead.
+- A constrained spec (issue 21) adds its constraint reactions, in its multipliers lambda. A loop-closing
+  pin's loop-closure equations are gap = r_parent(parent_at) - r_child(child_at) = 0 (components x, y, z
+  with multipliers lambda_k), so A^T lambda is the generalized force of the force lambda = (lambda_x,
+  lambda_y, lambda_z) on the PARENT at its point and -lambda on the CHILD at its point: the pin's reaction
+  in the convention above (parent on child) is -lambda. A constraint given as an expression names no force
+  on a body: its generalized force (A^T lambda)_i enters the equation of q_i as a drive does. Each
+  equation then reads (H q_ddot + C + G - Q - A^T lambda)_i = 0, compared with Lagrange's with
+  multipliers row by row, and, with the reduced route's lambda and accelerations, at consistent states.
 
 Each equation is put in Lagrange's contract, (H q_ddot + C + G - Q)_i = 0, and compared with it.
 """
@@ -29,6 +37,8 @@ import dataclasses
 
 import sympy as sp
 
+from tutgen.engine.constrained_ne import constraint_reactions, reduction_agreement
+from tutgen.engine.constraints import ConstrainedDynamics
 from tutgen.engine.derivation import Check, Derivation
 from tutgen.engine.inertia import BodyInertia, body_inertia
 from tutgen.engine.kinematics import Kinematics
@@ -37,6 +47,7 @@ from tutgen.engine.ne_types import (
     ZERO,
     AppliedLoad,
     BodyBalance,
+    ConstraintReaction,
     CoordinateEquation,
     JointReaction,
     Motion,
@@ -55,6 +66,7 @@ __all__ = [
     "PROJECTION_REMARK",
     "AppliedLoad",
     "BodyBalance",
+    "ConstraintReaction",
     "CoordinateEquation",
     "JointReaction",
     "Motion",
@@ -65,7 +77,11 @@ __all__ = [
 
 
 def derive_newton_euler(
-    system: System, derivation: Derivation, kinematics: Kinematics | None = None, planar: bool = True
+    system: System,
+    derivation: Derivation,
+    kinematics: Kinematics | None = None,
+    planar: bool = True,
+    constraints: ConstrainedDynamics | None = None,
 ) -> NewtonEuler:
     """Derive the equations of motion body by body with Newton-Euler, and prove they equal Lagrange's.
 
@@ -76,6 +92,10 @@ def derive_newton_euler(
     kinematics : the frames Lagrange's route built, reused; built again when omitted.
     planar : also build the scalar form of a planar system (:mod:`tutgen.engine.planar_ne`), which
         costs about a third more; leave it out when Newton–Euler is derived only for the agreement check.
+    constraints : a constrained spec's two routes (``Derivation.constraints``), with ``system`` the system
+        whose constraints include the loop-closure equations (``with_loop_closures``): the constraint
+        reactions then enter the balances (the module's conventions), the equations are compared with
+        Lagrange's with multipliers, and ``reduction`` checks them with the reduced route's lambda.
 
     Returns
     =======
@@ -111,8 +131,16 @@ def derive_newton_euler(
     inertia = {bi.name: bi for bi in (derivation.inertia or tuple(body_inertia(b) for b in system.bodies))}
     kin = kinematics or Kinematics(system, {name: bi.com for name, bi in inertia.items()})
     rates = [*(c.qdd for c in system.coordinates), *(c.qd for c in system.coordinates)]
-    builder = _Builder(system, kin, inertia, rates)
-    ne = builder.build(derivation.equations_of_motion)
+    # a constrained spec's multipliers are grouped like the rates: each coefficient is tidied on its own
+    rates += list(constraints.multipliers) if constraints is not None else []
+    builder = _Builder(system, kin, inertia, rates, constraints)
+    lagrange = derivation.equations_of_motion
+    if constraints is not None:  # Lagrange's with multipliers: (H q_ddot + C + G - Q)_i = (A^T lambda)_i
+        lagrange = sp.ImmutableMatrix(sp.Matrix(lagrange) - sp.Matrix(constraints.constraint_forces))
+    ne = builder.build(lagrange)
+    if constraints is not None:
+        checkpoint("Newton-Euler: with the reduced route's multipliers")
+        ne = dataclasses.replace(ne, reduction=reduction_agreement(system, constraints, ne.equations_of_motion))
     if not planar:
         return ne
     checkpoint("Newton-Euler: the planar form")
@@ -171,9 +199,15 @@ def _unknowns(letter: str, joint: str) -> Vec:
 
 class _Builder:
     def __init__(
-        self, system: System, kin: Kinematics, inertia: dict[str, BodyInertia], rates: list[sp.Symbol]
+        self,
+        system: System,
+        kin: Kinematics,
+        inertia: dict[str, BodyInertia],
+        rates: list[sp.Symbol],
+        constraints: ConstrainedDynamics | None = None,
     ) -> None:
         self.system = system
+        self.constraint_reactions = constraint_reactions(system, kin, constraints) if constraints else ()
         self.kin = kin
         self.inertia = inertia
         self.rates = rates
@@ -362,6 +396,12 @@ class _Builder:
             on_a = Vec(factor * d)
             add(a.body, AppliedLoad(f"damper '{damper.name}'", on_a, Vec(pa), ZERO))
             add(b.body, AppliedLoad(f"damper '{damper.name}'", Vec(-on_a), Vec(pb), ZERO))
+        for cr in self.constraint_reactions:  # a loop-closing pin: lambda on the parent, -lambda on the child
+            if cr.kind == "pin":
+                assert cr.parent and cr.child and cr.point is not None and cr.child_point is not None
+                assert cr.on_parent is not None and cr.on_child is not None
+                add(cr.parent, AppliedLoad(f"reaction at joint '{cr.name}'", cr.on_parent, cr.point, ZERO))
+                add(cr.child, AppliedLoad(f"reaction at joint '{cr.name}'", cr.on_child, cr.child_point, ZERO))
         return out
 
     def along_coordinates(self) -> list[sp.Expr]:
@@ -384,6 +424,10 @@ class _Builder:
                 rate = sum((sp.diff(damper.extension, qj) * qdj for qj, qdj in zip(q, qd, strict=True)), sp.Integer(0))
                 dissipation = damper.coefficient * rate**2 / 2
                 out = [o - sp.diff(dissipation, qdi) for o, qdi in zip(out, qd, strict=True)]
+        # a constraint given as an expression: its generalized force (A^T lambda)_i, as a drive's
+        for cr in self.constraint_reactions:
+            if cr.kind == "generalized":
+                out = [o + f for o, f in zip(out, cr.generalized_force, strict=True)]
         # a motor's rotor takes n^2 J_m q_ddot_i of the drive's effort to accelerate itself (its reflected
         # inertia): the link receives Q_i - n^2 J_m q_ddot_i through the joint (gyroscopic terms neglected)
         for joint in system.joints:
@@ -425,7 +469,7 @@ class _Builder:
             )
         eom = sp.ImmutableMatrix([e.equation for e in equations])
         checkpoint("Newton-Euler: agreement with Lagrange")
-        agreement = _agreement(self.system, eom, lagrange_eom)
+        agreement = _agreement(self.system, eom, lagrange_eom, bool(self.constraint_reactions))
         order = [b.name for b in self.system.bodies]
         ne = NewtonEuler(
             method=method,
@@ -436,6 +480,7 @@ class _Builder:
             equations_of_motion=eom,
             agreement=agreement,
             remarks=tuple(self.remarks),
+            constraint_reactions=self.constraint_reactions,
         )
         return ne
 
@@ -660,9 +705,11 @@ class _Builder:
         return tuple(out)
 
 
-def _agreement(system: System, eom: sp.MatrixBase, lagrange: sp.MatrixBase) -> Check:
+def _agreement(system: System, eom: sp.MatrixBase, lagrange: sp.MatrixBase, constrained: bool = False) -> Check:
     """Each Newton-Euler equation minus Lagrange's must vanish: symbolically, or else numerically at
-    random states. A difference is a bug, reported with the coordinate it is about."""
+    random states. A difference is a bug, reported with the coordinate it is about. ``constrained``:
+    ``lagrange`` is Lagrange's with multipliers, H q_ddot + C + G - Q - A^T lambda (an identity in q, q_dot,
+    q_ddot and lambda, so any state will do)."""
     hows = []
     for i, coord in enumerate(system.coordinates):
         zero, how = is_zero(eom[i] - lagrange[i])
@@ -677,6 +724,11 @@ def _agreement(system: System, eom: sp.MatrixBase, lagrange: sp.MatrixBase) -> C
         hows.append(how)
     numeric = [c.name for c, h in zip(system.coordinates, hows, strict=True) if h.startswith("numerically")]
     detail = "The Newton–Euler equations agree with Lagrange's"
+    if constrained:
+        detail = (
+            "The Newton–Euler equations, with the constraint reactions, agree with Lagrange's with multipliers, "
+            "H q_ddot + C + G - Q = A^T lambda, row by row"
+        )
     if numeric:
         detail += f" (symbolically, and numerically at random states for {', '.join(numeric)})"
     return Check("newton_euler_equals_lagrange", True, detail)

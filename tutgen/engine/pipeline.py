@@ -124,7 +124,7 @@ def derive(system: System, method: str | None = None) -> Derivation:
     }:
         d = _analysis(d, {kind for kind, _ in plan})
     if system.is_constrained and d.mass_matrix is not None:
-        d = _constrained(d)
+        d = _constrained(d, {kind for kind, _ in plan})
     checkpoint("steps")
     kinds = [kind for kind, _ in plan]
     return dataclasses.replace(d, checks=reported_checks(d.checks, kinds), steps=record_steps(d, plan, large))
@@ -276,15 +276,15 @@ def _general_route(
     # 8. Newton-Euler, for bodies (a given T has no bodies to free), whenever the equations of motion are
     # derived: its agreement with Lagrange's is one of the checks even when its working is not shown
     wanted = {StepKind.EQUATIONS_OF_MOTION, StepKind.LAGRANGE_EQUATIONS, StepKind.NEWTON_EULER}
-    if not kinds & wanted or kin is None or not system.bodies:
-        return derivation
+    if not kinds & wanted or kin is None or not system.bodies or system.is_constrained:
+        return derivation  # a constrained spec's, with its constraint reactions: in _constrained
     checkpoint("Newton-Euler")
     # the planar working (free bodies, eliminations: a quarter more time) only when it is printed
     ne = derive_newton_euler(system, derivation, kin, planar=Method.NEWTON_EULER in methods)
     return dataclasses.replace(derivation, newton_euler=ne, checks=(*derivation.checks, ne.agreement))
 
 
-def _constrained(d: Derivation) -> Derivation:
+def _constrained(d: Derivation, kinds: set[StepKind]) -> Derivation:
     """The spec's constraints (issue 21): their kinematics, then the equations with Lagrange's multipliers
     and reduced to the independent coordinates, checked against each other."""
     checkpoint("constraints: kinematics")
@@ -293,7 +293,14 @@ def _constrained(d: Derivation) -> Derivation:
     checkpoint("constraints: multipliers and reduction")
     assert d.coriolis_vector is not None and d.gravity_vector is not None and d.generalized_forces is not None
     cd = constrained_dynamics(system, ck, d.mass_matrix, d.coriolis_vector, d.gravity_vector, d.generalized_forces)
-    return dataclasses.replace(d, constraints=cd, checks=(*d.checks, cd.check))
+    d = dataclasses.replace(d, constraints=cd, checks=(*d.checks, cd.check))
+    if kinds & {StepKind.EQUATIONS_OF_MOTION, StepKind.LAGRANGE_EQUATIONS, StepKind.NEWTON_EULER} and d.kinematics:
+        # (d.kinematics: bodies placed by the spec, not a given kinetic energy)
+        checkpoint("Newton-Euler")  # with the constraint reactions (tutgen.engine.newton_euler)
+        ne = derive_newton_euler(system, d, planar=Method.NEWTON_EULER in d.methods, constraints=cd)
+        checks = (*d.checks, ne.agreement, *((ne.reduction,) if ne.reduction else ()))
+        d = dataclasses.replace(d, newton_euler=ne, checks=checks)
+    return d
 
 
 def _serial_route(

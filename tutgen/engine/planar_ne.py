@@ -17,6 +17,9 @@ Conventions (as in tutgen.engine.newton_euler, whose motions and applied loads a
   a spring and -c e_dot de/dq_i of a damper given by an extension e, and -n^2 J_m q_ddot_i of a geared
   rotor. On the child it is a couple Q_i about z (revolute) or a force Q_i along the axis (prismatic);
   its reaction is on the parent, or on the ground when the angle is absolute (measured from the world).
+- A constrained spec's reactions (tutgen.engine.newton_euler): a loop-closing pin's force is lambda on
+  its parent and -lambda on its child, drawn at the pin on both; a constraint given as an expression acts
+  along each coordinate as a drive does, (A^T lambda)_i at that coordinate's joint.
 - Eliminating the reactions: the equation of q_i is the virtual work of the balances under a change
   of q_i alone. For a revolute joint that is the sum of the moments about its pivot of the bodies that
   turn with it, plus the moments of the forces of the bodies carried without turning (behind an
@@ -132,6 +135,7 @@ class _Planar:
         self.kin = kin
         self.ne = ne
         self.rates = [*(c.qdd for c in system.coordinates), *(c.qd for c in system.coordinates)]
+        self.rates += [x for cr in ne.constraint_reactions for x in cr.multipliers]  # grouped as in ne
         self.joints = {j.name: j for j in system.joints}
         self.reactions = {r.joint: r for r in ne.reactions}  # the recursive route's: axes and points
         self.order = [self.joints[r.joint] for r in ne.reactions]  # parents before children
@@ -208,6 +212,13 @@ class _Planar:
             if j.reflected_inertia is not None and j.coordinate is not None:
                 share = -j.reflected_inertia * j.coordinate.qdd
                 out.append((j, f"rotor of the motor at joint '{j.name}'", ForceKind.ROTOR, j.name, share))
+        for cr in self.ne.constraint_reactions:  # a constraint given as an expression: (A^T lambda)_i
+            if cr.kind == "generalized":
+                for c, share in zip(system.coordinates, cr.generalized_force, strict=True):
+                    if not _zero(share):
+                        out.append(
+                            (joint_of[c.name], f"force of constraint '{cr.name}'", ForceKind.CONSTRAINT, cr.name, share)
+                        )
         return out
 
     def diagrams(self) -> dict[str, list[PlanarForce]]:
@@ -220,10 +231,14 @@ class _Planar:
             if body in forces:  # the ground's share is not drawn
                 forces[body].append(force)
 
+        pins = {cr.name: cr for cr in self.ne.constraint_reactions if cr.kind == "pin"}
         for body, bal in self.balances.items():
             for ld in bal.loads:
-                kind = _load_kind(ld.name)
-                add(body, PlanarForce(ld.name, kind, _quoted(ld.name), _pair(ld.point), _pair(ld.force), ld.torque[2]))
+                kind, source = _load_kind(ld.name), _quoted(ld.name)
+                if ld.name.startswith("reaction at joint") and source in pins:  # a loop-closing pin's force
+                    on_parent = body == pins[source].parent
+                    kind = ForceKind.LOOP_REACTION_ON_PARENT if on_parent else ForceKind.LOOP_REACTION
+                add(body, PlanarForce(ld.name, kind, source, _pair(ld.point), _pair(ld.force), ld.torque[2]))
         for joint, name, kind, source, value in self.drives():
             o = self.point(joint.name)
             if joint.kind is JointKind.PRISMATIC:

@@ -16,7 +16,7 @@ from tutgen.engine.analysis import LinearModel, SteadyMotion
 from tutgen.engine.analysis.equilibria import existence
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.ne_types import PlanarNewtonEuler
-from tutgen.engine.newton_euler import NewtonEuler
+from tutgen.engine.newton_euler import ConstraintReaction, NewtonEuler
 from tutgen.engine.serial import LARGE
 from tutgen.engine.steps import Step
 from tutgen.figure.view import figure_json
@@ -255,6 +255,34 @@ def _newton_euler(ne: NewtonEuler, num: Any) -> dict[str, Any]:
         "agrees_with_lagrange": ne.agrees_with_lagrange,
         "remarks": list(ne.remarks),
         **({"planar": _planar(ne.planar, num)} if ne.planar is not None else {}),
+        **(_constraint_reactions(ne, num) if ne.constraint_reactions else {}),
+    }
+
+
+def _constraint_reactions(ne: NewtonEuler, num: Any) -> dict[str, Any]:
+    """A constrained spec's constraint reactions in its multipliers, and the check with the reduced
+    route (additive, issue 21, docs/json-output.md#newton_euler)."""
+
+    def entry(cr: ConstraintReaction) -> dict[str, Any]:
+        out: dict[str, Any] = {
+            "kind": cr.kind,
+            "constraints": list(cr.constraints),
+            "multipliers": [str(x) for x in cr.multipliers],
+            "generalized_force": vector(num(sp.ImmutableMatrix(cr.generalized_force))),
+        }
+        if cr.kind == "pin":
+            assert cr.on_parent is not None and cr.on_child is not None
+            out |= {
+                "parent": cr.parent,
+                "child": cr.child,
+                "force_on_parent": vector(num(cr.on_parent)),
+                "force_on_child": vector(num(cr.on_child)),
+            }
+        return out
+
+    return {
+        "constraint_reactions": {cr.name: entry(cr) for cr in ne.constraint_reactions},
+        "agrees_with_reduction": ne.reduction is not None and ne.reduction.passed,
     }
 
 

@@ -65,6 +65,10 @@ _NE_INTRO = {
         "$\\mathbf F_c$, $\\mathbf M_c$ do no work and drop out."
     ),
 }
+_NE_CONSTRAINED = (
+    " The spec's constraints are not built into the placement: their forces do work in a change of one "
+    "coordinate alone and enter through their multipliers."
+)
 _NE_BALANCE = (
     "Each body is in equilibrium under its applied forces, the joint reactions and D'Alembert's inertial "
     "force $-m\\mathbf a_G$ and couple $-(I_G\\alpha + \\omega \\times I_G\\omega)$; "
@@ -96,8 +100,11 @@ def newton_euler_section(
     intro = _NE_INTRO[ne.method]
     if ne.method is not NEMethod.PROJECTION:
         intro += _NE_BALANCE
+    elif ne.constraint_reactions:
+        intro += _NE_CONSTRAINED
     sec = section("Newton–Euler", intro)
     blocks = sec["blocks"]
+    blocks += constraint_reaction_blocks(ne, coordinates, tex, num)
     motions = {m.body: m for m in ne.motions}
     for b in ne.bodies:
         name = tex_name(b.body)
@@ -180,8 +187,7 @@ def newton_euler_section(
             )
         blocks.append(display(f"{lhs} = {tex(num(e.projection))} = {tex(num(e.generalized_force))}"))
     blocks += [para(engine_parts(r, tex)) for r in ne.remarks if r != PROJECTION_REMARK]  # the intro said it
-    if ne.agrees_with_lagrange:
-        blocks.append(para(engine_parts(ne.agreement.detail + ".", tex)))
+    blocks += _agreement_blocks(ne, tex)
     return sec
 
 
@@ -255,10 +261,14 @@ def _label(f: PlanarForce, coords: dict[str, str]) -> tuple[str, str]:
         return "\\mathbf F_{\\text{inertial}}", ""
     if f.kind is ForceKind.INERTIAL_COUPLE:
         return "", "M_{\\text{inertial}} = -I_G\\alpha"
-    if f.kind in (ForceKind.REACTION, ForceKind.REACTION_ON_PARENT):
+    if f.kind in (ForceKind.REACTION, ForceKind.REACTION_ON_PARENT, ForceKind.LOOP_REACTION):
         j = tex_name(f.source or "")
-        sign = "" if f.kind is ForceKind.REACTION else "-"
+        sign = "" if f.kind in (ForceKind.REACTION, ForceKind.LOOP_REACTION) else "-"
         return f"{sign}\\mathbf R_{{{j}}}", f"{sign}M_{{{j}}}"
+    if f.kind is ForceKind.LOOP_REACTION_ON_PARENT:
+        return f"-\\mathbf R_{{{tex_name(f.source or '')}}}", ""
+    if f.kind is ForceKind.CONSTRAINT:
+        return f"\\mathbf F_{{{src}}}", f"\\tau_{{{src}}}"
     if f.kind in (ForceKind.DRIVE, ForceKind.DRIVE_REACTION):
         sign = "" if f.kind is ForceKind.DRIVE else "-"
         q = coords.get(f.source or "", src)
@@ -280,6 +290,9 @@ _WORDS = {
     ForceKind.ROTOR: "the geared rotor's reflected inertia",
     ForceKind.REACTION: "joint reaction, on the child",
     ForceKind.REACTION_ON_PARENT: "joint reaction, on the parent",
+    ForceKind.LOOP_REACTION: "the loop-closing pin, on the child",
+    ForceKind.LOOP_REACTION_ON_PARENT: "the loop-closing pin, on the parent",
+    ForceKind.CONSTRAINT: "the constraint's generalized force at its joint",
     ForceKind.INERTIAL_FORCE: "D'Alembert",
     ForceKind.INERTIAL_COUPLE: "D'Alembert",
 }
@@ -304,6 +317,8 @@ def _force_lines(b: PlanarBalance, mass: str, coords: dict[str, str], tex: TexPr
         if fx != 0 or fy != 0:
             at_g = f.kind is ForceKind.GRAVITY
             where = "\\quad\\text{at }G" if at_g else _at(tex, (num(f.point[0]), num(f.point[1])))
+            if f.kind in (ForceKind.LOOP_REACTION, ForceKind.LOOP_REACTION_ON_PARENT):  # one point, two bodies
+                where = f"\\quad\\text{{at the pin }}{tex_name(f.source or '')}"
             lines.append(f"{force_name} = {_ij(tex, fx, fy)}{where}{words}")
         if t != 0:
             lines.append(f"{couple_name} = {tex(t)}{words}")
@@ -339,6 +354,7 @@ def planar_section(
     _name_unknowns(planar, tex)
     sec = section("Newton–Euler", _PLANAR_INTRO)
     blocks = sec["blocks"]
+    blocks += constraint_reaction_blocks(ne, coordinates, tex, num)
     masses = {b.body: b.mass for b in ne.bodies}
     motions = {m.body: m for m in ne.motions}
     axes = {r.joint: (r.axis[0], r.axis[1]) for r in ne.reactions}
@@ -346,6 +362,8 @@ def planar_section(
     for b in planar.balances:
         about = tex_name(b.joint)
         mass = tex(num(masses[b.body])) if masses[b.body] != 0 else "m"
+        if isinstance(num(masses[b.body]), sp.Add):  # a composite body's m_2 + m_f: -(m_2 + m_f) a_G
+            mass = f"\\left({mass}\\right)"
         where = f"the pivot of joint '{b.joint}'" if kinds[b.joint] is JointKind.REVOLUTE else f"joint '{b.joint}'"
         blocks.append(
             para(
@@ -391,9 +409,68 @@ def planar_section(
         blocks.append(stacked(lines))
     # the recursive route's remarks (what enters as Q_i, what is subtracted behind an absolute angle)
     # describe its own form; here every force is on its free body and the steps say what is added
-    if ne.agrees_with_lagrange:
-        blocks.append(para(engine_parts(ne.agreement.detail + ".", tex)))
+    blocks += _agreement_blocks(ne, tex)
     return sec
+
+
+def constraint_reaction_blocks(
+    ne: NewtonEuler, coordinates: tuple[Coordinate, ...], tex: TexPrinter, num: Any
+) -> list[dict[str, Any]]:
+    """What a constrained spec's constraints exert (issue 21), in their multipliers: a loop-closing pin's
+    force on both of its bodies; a constraint expression's generalized force along each coordinate."""
+    out: list[dict[str, Any]] = []
+    latex = {c.name: c.latex for c in coordinates}
+    for cr in ne.constraint_reactions:
+        lams = ",\\ ".join(tex(x) for x in cr.multipliers)
+        if cr.kind == "pin":
+            assert cr.on_parent is not None and cr.on_child is not None
+            j, parent, child = tex_name(cr.name), tex_name(cr.parent or ""), tex_name(cr.child or "")
+            eqs = ", ".join(cr.constraints)
+            out.append(
+                para(
+                    text(f"The pin {cr.name} closes the loop: its loop-closure equations ({eqs}) say that "),
+                    math(f"\\mathbf r_{{{parent}}}({j}) - \\mathbf r_{{{child}}}({j})"),
+                    text(" (the pin as a point of each body) is zero, so "),
+                    math("A^{T}\\lambda"),
+                    text(" is the generalized force of the force "),
+                    math(_ijk(tex, cr.on_parent)),
+                    text(f" on {cr.parent} at the pin and its opposite on {cr.child}: the multipliers "),
+                    math(lams),
+                    text(f" are the world components of the pin's force on {cr.parent}. In the convention of the "),
+                    text(f"other joints (parent on child) the pin's reaction on {cr.child} is "),
+                    math(f"\\mathbf R_{{{j}}} = {_ijk(tex, num(cr.on_child))}"),
+                    text(f", and {cr.parent} receives "),
+                    math(f"-\\mathbf R_{{{j}}}"),
+                    text(". Both enter the balances like any other force."),
+                )
+            )
+        else:
+            shares = [
+                (f"{tex(num(f))}", latex[c.name])
+                for c, f in zip(coordinates, cr.generalized_force, strict=True)
+                if f != 0
+            ]
+            words: list[Any] = [text(f"The constraint '{cr.name}' exerts its force through its multiplier ")]
+            words += [math(lams), text(": its generalized force ")]
+            words.append(math("(A^{T}\\lambda)_i"))
+            words.append(text(" enters the equation of each coordinate as a drive does, "))
+            for k, (value, q) in enumerate(shares):
+                if k:
+                    words.append(text(" and " if k == len(shares) - 1 else ", "))
+                words += [math(value), text(" along "), math(q)]
+            words.append(text("."))
+            out.append(para(*words))
+    return out
+
+
+def _agreement_blocks(ne: NewtonEuler, tex: TexPrinter) -> list[dict[str, Any]]:
+    """The agreement with Lagrange's (with multipliers, for a constrained spec) and with the reduction."""
+    out = []
+    if ne.agrees_with_lagrange:
+        out.append(para(engine_parts(ne.agreement.detail + ".", tex)))
+    if ne.reduction is not None and ne.reduction.passed:
+        out.append(para(engine_parts(ne.reduction.detail + ".", tex)))
+    return out
 
 
 def _step_blocks(
