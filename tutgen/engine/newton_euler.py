@@ -57,7 +57,7 @@ from tutgen.engine.ne_types import (
     group_rates,
 )
 from tutgen.engine.planar_ne import planar_newton_euler
-from tutgen.engine.tidy import is_zero, tidy, trig_reduce
+from tutgen.engine.tidy import is_zero, memoised, tidy, trig_reduce
 from tutgen.errors import AgreementError, DerivationError
 from tutgen.limits import checkpoint
 from tutgen.model.system import GROUND, Joint, JointKind, System
@@ -154,6 +154,7 @@ def _dot(a: sp.MatrixBase, b: sp.MatrixBase) -> sp.Expr:
     return (sp.Matrix(a).T * sp.Matrix(b))[0]
 
 
+@memoised
 def _shorter_reduction(e: sp.Expr) -> sp.Expr:
     """The shortest of: as is, its trigonometric reduction, and (for a short coefficient) ``tidy``'s
     forms, which combine products into sums of angles (cos t1 cos t2 + sin t1 sin t2 = cos(t1 - t2))."""

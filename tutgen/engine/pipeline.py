@@ -32,7 +32,6 @@ from collections.abc import Sequence
 import sympy as sp
 
 from tutgen.engine.checks import dimension_checks, matrix_form_checks, verify
-from tutgen.engine.constraints import constrained_dynamics, constraint_kinematics, with_loop_closures
 from tutgen.engine.derivation import Derivation
 from tutgen.engine.forces import generalized_forces, rotors, spring_energies
 from tutgen.engine.inertia import BodyInertia, BodyPrincipal, body_inertia, body_principal
@@ -42,8 +41,6 @@ from tutgen.engine.lazytable import LazyMatrix, LazyTable
 from tutgen.engine.matrix_form import christoffel_symbols, coriolis_terms, equations_of_motion, gravity_vector
 from tutgen.engine.newton_euler import derive_newton_euler
 from tutgen.engine.potential import potential_sources
-from tutgen.engine.prescribed import prescribed_motion
-from tutgen.engine.recursive import nested_dynamics
 from tutgen.engine.remarks import REMARK_CONSTANT_MASS_MATRIX, degeneracy_remarks, rotor_remark, zero_remarks
 from tutgen.engine.serial import REMARK_FAST_PATH, is_large_serial_chain, serial_checks, serial_dynamics
 from tutgen.engine.steps import StepKind, plan_steps, record_steps, reported_checks
@@ -159,6 +156,8 @@ def _analysis(d: Derivation, kinds: set[StepKind]) -> Derivation:
 def _prescribed(d: Derivation) -> Derivation:
     """The spec's prescribed coordinates (issue 18): the motion substituted into the equations of every
     coordinate as free, giving the free coordinates' equations and each drive force, with their checks."""
+    from tutgen.engine.prescribed import prescribed_motion  # imported by the specs that prescribe (issue 17)
+
     checkpoint("prescribed motion")
     pm = prescribed_motion(d)
     return dataclasses.replace(d, prescribed=pm, checks=(*d.checks, *pm.checks))
@@ -287,6 +286,8 @@ def _general_route(
 def _constrained(d: Derivation, kinds: set[StepKind]) -> Derivation:
     """The spec's constraints (issue 21): their kinematics, then the equations with Lagrange's multipliers
     and reduced to the independent coordinates, checked against each other."""
+    from tutgen.engine.constraints import constrained_dynamics, constraint_kinematics, with_loop_closures
+
     checkpoint("constraints: kinematics")
     system = with_loop_closures(d.system, d.kinematics)  # the loop joints' equations join the constraints
     ck = constraint_kinematics(system)
@@ -315,6 +316,8 @@ def _serial_route(
     Q, springs and dampers are the general route's (:mod:`~tutgen.engine.forces`); world kinematics are
     built only when a load, or a spring or damper between points, needs them.
     """
+    from tutgen.engine.recursive import nested_dynamics  # the program of a large arm only
+
     checkpoint("mass matrix, Coriolis and gravity terms (serial arm)")
     dyn = serial_dynamics(system)
     q = [c.q for c in system.coordinates]

@@ -7,12 +7,40 @@ H, one term of T), so cost stays proportional to the size of the result.
 from __future__ import annotations
 
 import random
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 
 import sympy as sp
 from sympy.simplify.fu import TR8
 
+#: How many results each memoised function keeps (issue 17): a worked solution tidies the same entry
+#: several times (the Lagrange and Newton–Euler routes, the checks, the matrix form), a sheet its variants.
+MEMO_SIZE = 4096
 
+
+def memoised(fn: Callable[[sp.Expr], sp.Expr]) -> Callable[[sp.Expr], sp.Expr]:
+    """``fn`` of one expression, remembered for equal expressions. Not for expressions with floats:
+    sympy's ``==`` may hold between floats of different precisions, which print differently. The memo
+    is emptied when full, so results never depend on what ran before."""
+    memo: dict[sp.Basic, sp.Expr] = {}
+
+    def remembered(expr: sp.Expr) -> sp.Expr:
+        if not isinstance(expr, sp.Basic) or expr.has(sp.Float):
+            return fn(expr)
+        hit = memo.get(expr)
+        if hit is None:
+            hit = fn(expr)
+            if len(memo) >= MEMO_SIZE:
+                memo.clear()
+            memo[expr] = hit
+        return hit
+
+    remembered.__name__ = remembered.__qualname__ = fn.__name__
+    remembered.__doc__ = fn.__doc__
+    remembered.__wrapped__ = fn  # type: ignore[attr-defined]
+    return remembered
+
+
+@memoised
 def tidy(expr: sp.Expr) -> sp.Expr:
     """The shortest of three forms of a trigonometric polynomial: as expanded, as a sum of sines
     and cosines of combined angles (products turned into sums, so cos a cos b - sin a sin b becomes
@@ -55,6 +83,7 @@ def tidy_rates(expr: sp.Expr, rates: Sequence[sp.Symbol]) -> sp.Expr:
     return sp.Add(*terms)
 
 
+@memoised
 def trig_reduce(expr: sp.Expr) -> sp.Expr:
     """A canonical form for polynomials in sines and cosines: expand every sum of angles, then
     replace sin(u)^2 by 1 - cos(u)^2 until no even power of a sine is left. Two such polynomials

@@ -7,17 +7,16 @@ written beside the ``.md`` by :mod:`tutgen.api`); the LaTeX solution holds the T
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from tutgen.figure.build import draw_system
-from tutgen.figure.scene import Drawing
 from tutgen.model.figure import ImageKind
 from tutgen.model.system import System
 
 if TYPE_CHECKING:
     from tutgen.figure.freebody import BodyForce
+    from tutgen.figure.scene import Drawing
 
 _PLAIN = re.compile(r"[A-Za-z0-9._/-]+")
 
@@ -31,13 +30,70 @@ def svg_name(system: System) -> str:
 
 def drawing_of(system: System) -> Drawing | None:
     """The generated drawing, or None when the spec asks for its own picture only."""
-    cfg = system.figure
-    if cfg is not None and not cfg.generated:
+    if not is_generated(system):
         return None
+    from tutgen.figure.build import draw_system  # numpy: only when a figure is drawn
+
     return draw_system(system)
 
 
-def figure_view(system: System, drawing: Drawing | None = None) -> dict[str, Any]:
+def is_generated(system: System) -> bool:
+    """Whether the spec has a generated drawing (without drawing it): unless it asks for its own picture only."""
+    cfg = system.figure
+    return cfg is None or cfg.generated
+
+
+class FigureView(Mapping[str, Any]):
+    """The keys of :func:`figure_view`; those that need the drawing (``tikz``, ``remarks``) are drawn on
+    first read, so a Markdown solution on stdout, which names the SVG only, never draws (issue 17).
+    Pickled, it is a plain dict."""
+
+    _DRAWN_KEYS = ("tikz", "remarks")
+
+    def __init__(self, system: System, drawing: Drawing | None, plain: dict[str, Any]) -> None:
+        self._system = system
+        self._drawing = drawing
+        self._plain = plain
+
+    def _drawn(self) -> None:
+        from tutgen.figure.tikz import to_tikz
+
+        drawing = self._drawing if self._drawing is not None else drawing_of(self._system)
+        self._plain["tikz"] = to_tikz(drawing) if drawing is not None else ""
+        self._plain["remarks"] = list(drawing.remarks) if drawing is not None else []
+
+    def __getitem__(self, key: str) -> Any:
+        if key in self._DRAWN_KEYS and key not in self._plain:
+            self._drawn()
+        return self._plain[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(FIGURE_KEYS)
+
+    def __len__(self) -> int:
+        return len(FIGURE_KEYS)
+
+    def __reduce__(self) -> tuple[type, tuple[dict[str, Any]]]:
+        return (dict, (dict(self.items()),))
+
+
+#: The keys of :func:`figure_view`, in order.
+FIGURE_KEYS = (
+    "generated",
+    "tikz",
+    "svg",
+    "file",
+    "file_kind",
+    "file_tex",
+    "file_tex_name",
+    "file_plain",
+    "file_md",
+    "caption",
+    "remarks",
+)
+
+
+def figure_view(system: System, drawing: Drawing | None = None) -> Mapping[str, Any]:
     """The template context of the figure (``figure`` in tutgen/render/views.py).
 
     ``tikz``: the picture for LaTeX ("" without a generated drawing); ``svg``: the SVG's relative
@@ -46,18 +102,17 @@ def figure_view(system: System, drawing: Drawing | None = None) -> dict[str, Any
     it is copied in under when tutgen compiles the PDF, :func:`tutgen.figure.picture.picture_name`;
     ``file_plain``: whether the path as written may also go into TeX, for a ``.tex`` compiled beside
     the spec; ``file_md``: whether a browser shows it, PNG, JPEG or SVG); ``caption``: raw text;
-    ``remarks``: what the drawing adjusted.
+    ``remarks``: what the drawing adjusted. ``tikz`` and ``remarks`` are drawn when first read
+    (:class:`FigureView`).
     """
     from tutgen.figure.picture import TEX_EXTENSIONS, picture_name
-    from tutgen.figure.tikz import to_tikz
 
-    drawing = drawing if drawing is not None else drawing_of(system)
+    generated = drawing is not None or is_generated(system)
     cfg = system.figure
     file = cfg.file if cfg is not None else None
-    return {
-        "generated": drawing is not None,
-        "tikz": to_tikz(drawing) if drawing is not None else "",
-        "svg": svg_name(system) if drawing is not None else "",
+    plain = {
+        "generated": generated,
+        "svg": svg_name(system) if generated else "",
         "file": file.path if file is not None else "",
         "file_kind": file.kind.value if file is not None else "",
         # pdflatex includes PNG, JPEG and PDF, by a name tutgen makes (copied into the compile folder)
@@ -67,8 +122,8 @@ def figure_view(system: System, drawing: Drawing | None = None) -> dict[str, Any
         "file_plain": file is not None and file.kind in TEX_EXTENSIONS and _is_plain(file.path, file.kind),
         "file_md": file is not None and file.kind is not ImageKind.PDF,
         "caption": system.title,
-        "remarks": list(drawing.remarks) if drawing is not None else [],
     }
+    return FigureView(system, drawing, plain)
 
 
 def _is_plain(path: str, kind: ImageKind) -> bool:
@@ -114,6 +169,7 @@ def free_body_views(system: System, forces: Mapping[str, Sequence[BodyForce]] | 
     ``remarks``. ``forces``: per body, the forces to draw instead of the model's own
     (:func:`tutgen.figure.freebody.body_forces`), as the Newton–Euler step names them. A spatial
     system gets none (its diagrams would need the oblique view's care)."""
+    from tutgen.figure.build import draw_system
     from tutgen.figure.freebody import free_body_diagram
     from tutgen.figure.svg import to_svg
     from tutgen.figure.tikz import to_tikz
@@ -148,6 +204,7 @@ def render_figure(spec: Path, fmt: str, body: str | None = None) -> str | bytes:
     (that document compiled; :class:`tutgen.render.pdf.PdfError` if it cannot be). With ``body``, the
     free-body diagram of that body instead (:mod:`tutgen.figure.freebody`)."""
     from tutgen.errors import UsageError
+    from tutgen.figure.build import draw_system
     from tutgen.figure.svg import to_svg
     from tutgen.figure.tikz import tikz_document
     from tutgen.spec.validate import load_system

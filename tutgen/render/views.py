@@ -11,6 +11,7 @@ tutgen/render/blocks.py.
 
 from __future__ import annotations
 
+import importlib
 from collections.abc import Callable
 from typing import Any
 
@@ -21,25 +22,45 @@ from tutgen.figure.view import figure_view
 from tutgen.model.system import System
 from tutgen.render.blocks import Part, SolutionContext, all_decimals, math, prose, rich, text, unit_tex
 from tutgen.render.printer import TexPrinter, is_decimal_document
-from tutgen.render.sections.analysis import equilibria, linearization
 from tutgen.render.sections.arm import arm_table
-from tutgen.render.sections.constraints import constraint_kinematics, multipliers, reduced_equations
 from tutgen.render.sections.energy import energies
 from tutgen.render.sections.inertia import mass_properties
 from tutgen.render.sections.kinematics import kinematics
 from tutgen.render.sections.lagrange import equations_of_motion, lagrange_equations
 from tutgen.render.sections.matrix import christoffel_symbols, matrix_form
-from tutgen.render.sections.momentum import momentum
-from tutgen.render.sections.newton_euler import newton_euler
-from tutgen.render.sections.prescribed import drive_force, prescribed_motion
-from tutgen.render.sections.simulation import simulation
-from tutgen.render.sections.steady import steady_motion
 from tutgen.render.wording import engine_parts
 from tutgen.spec.units import decimal_text, in_unit
 
 __all__ = ["BUILDERS", "coordinate_items", "given_items", "prose", "rich", "sections", "solution_view"]
 
 Builder = Callable[[SolutionContext], dict[str, Any] | None]
+
+
+def _on_demand(module: str, name: str) -> Builder:
+    """The builder ``name`` of ``tutgen.render.sections.<module>``, imported when a step of its kind is
+    first rendered: the sections most specs do not have (Newton–Euler with its free-body diagrams and
+    numpy, constraints, analysis, simulation, ...) stay out of a Markdown solution's start-up (issue 17)."""
+
+    def build(context: SolutionContext) -> dict[str, Any] | None:
+        section: Builder = getattr(importlib.import_module(f"tutgen.render.sections.{module}"), name)
+        return section(context)
+
+    build.__name__ = build.__qualname__ = name
+    build.__doc__ = f"tutgen.render.sections.{module}.{name}, imported on first use."
+    return build
+
+
+equilibria = _on_demand("analysis", "equilibria")
+linearization = _on_demand("analysis", "linearization")
+constraint_kinematics = _on_demand("constraints", "constraint_kinematics")
+multipliers = _on_demand("constraints", "multipliers")
+reduced_equations = _on_demand("constraints", "reduced_equations")
+momentum = _on_demand("momentum", "momentum")
+newton_euler = _on_demand("newton_euler", "newton_euler")
+drive_force = _on_demand("prescribed", "drive_force")
+prescribed_motion = _on_demand("prescribed", "prescribed_motion")
+simulation = _on_demand("simulation", "simulation")
+steady_motion = _on_demand("steady", "steady_motion")
 
 #: the section builders of each kind of step, in order; kinds that share a builder (T, U and L: the
 #: energies) are one section, placed where the first of them is. Each returns its section, or None when
