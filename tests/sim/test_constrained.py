@@ -18,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import sympy as sp
 from typer.testing import CliRunner
 
 from tests.codegen.compiled import derived_lagrange
@@ -245,3 +246,42 @@ def test_an_input_in_a_constraint_is_refused_at_its_place() -> None:
     line = len(text.splitlines())
     assert f"disc.yaml:{line}:" in str(err.value)
     assert "input 'R' enters the constraints, which would then change in time" in str(err.value)
+
+
+def _start_on_the_figures_branch(rel: str, changes: dict[str, str]) -> None:
+    """Without a value for the dependent coordinates the start is the engine's solve
+    (kinematics.solve_positions) on the branch the figure shows: the loop closes to 1e-12, and the start
+    lies on the figure's branch (a four-bar's assembly, open or crossed, at the run's own lengths)."""
+    from tutgen.engine.constraints.positions import assembly_at, branch_at
+    from tutgen.figure.build import drawn_branch
+
+    values, _q0, qd0 = RUNS[rel]
+    result = simulate_system(
+        _derived(rel), Settings(values=values, q0=changes, qd0=qd0, t_end=0.01, samples=3), Path(rel).name
+    )
+    derivation = _derived(rel)
+    ck = derivation.constraints.kinematics
+    system = derivation.system
+    numbers = {p.symbol: float(values[p.name]) for p in system.parameters}
+    numbers |= {c.q: v for c, v in zip(system.coordinates, result.q0, strict=True)}
+    residual = [float(f.xreplace({k: sp.Float(v, 30) for k, v in numbers.items()})) for f in ck.functions]
+    assert max(abs(r) for r in residual) < 1e-12
+    assert ck.loop is not None
+    shown = drawn_branch(system, ck.loop)
+    assert shown is not None
+    sign, assembly = shown
+    if assembly is not None:
+        assert assembly_at(ck.loop, numbers) == assembly
+    else:
+        assert branch_at(ck.loop, numbers, [c.q for c in system.coordinates]) == sign
+
+
+def test_slider_crank_starts_on_the_figures_branch() -> None:
+    _start_on_the_figures_branch(SLIDER, {"theta": "0.3"})
+    _start_on_the_figures_branch(SLIDER, {"theta": "2.5"})
+
+
+@pytest.mark.slow  # the four-bar's Lagrange derivation: about 5 CPU-s
+def test_four_bar_starts_on_the_figures_assembly() -> None:
+    _start_on_the_figures_branch(FOUR_BAR, {"theta2": "0.5"})
+    _start_on_the_figures_branch(FOUR_BAR, {"theta2": "-2"})

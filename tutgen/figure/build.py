@@ -31,7 +31,9 @@ import dataclasses
 import math
 
 import numpy as np
+import sympy as sp
 
+from tutgen.engine.constraints.positions import LoopAnalysis, assembly_at, branch_at
 from tutgen.figure.axes import AxesDrawing
 from tutgen.figure.canvas import POSE_SIGNS
 from tutgen.figure.geometry import prim_box, segments_cross
@@ -66,6 +68,32 @@ def draw_system(system: System) -> Drawing:
         _DRAWN.pop(next(iter(_DRAWN)))
     _DRAWN[id(system)] = (system, drawing)
     return drawing
+
+
+def drawn_values(system: System) -> dict[sp.Symbol, float]:
+    """The numbers of the drawing of ``system``: a float for every parameter with a numeric value or a
+    drawing size, and for every coordinate at the pose drawn (the dependent ones solved so that the
+    loops close)."""
+    drawing = draw_system(system)
+    by_name = {p.name: p.symbol for p in system.parameters} | {x.name: x.q for x in system.coordinates}
+    values: dict[sp.Symbol, float] = {
+        p.symbol: float(p.value) for p in system.parameters if p.value is not None and p.value.is_number
+    }
+    for name, value in (*drawing.sizes, *drawing.at):
+        if name in by_name:
+            values[by_name[name]] = value
+    return values
+
+
+def drawn_branch(system: System, loop: LoopAnalysis) -> tuple[int, str | None] | None:
+    """The branch of ``loop`` (tutgen/engine/constraints/positions.py) that the drawing of ``system``
+    shows: its sign, and for a four-bar its assembly (``"open"`` or ``"crossed"``); ``None`` when the
+    drawing is on neither (its loop drawn open)."""
+    values = drawn_values(system)
+    sign = branch_at(loop, values, [x.q for x in system.coordinates])
+    if sign is None:
+        return None
+    return sign, assembly_at(loop, values)
 
 
 def _draw_system(system: System) -> Drawing:

@@ -6,19 +6,25 @@ coordinates, with the accelerations of the index-reduced DAE H q_ddot + C + G = 
 A q_ddot + b = 0 stabilised after Baumgarte (:meth:`tutgen.sim.model.NumericModel.accelerations`).
 
 The initial state: the independent coordinates and their rates as given; the dependent coordinates that
-the position constraints fix are solved from them by damped Gauss-Newton (Levenberg-Marquardt) starting
-from the values given for them, if any (which picks the branch: a four-bar's open or crossed assembly),
-else from 0; the dependent rates follow from A q_dot = 0, A_d q_dot_d = -A_i q_dot_i. The solve works on
-the generated functions the run integrates (the residuals and A of :mod:`tutgen.codegen`), in floats, so
-the start satisfies the very constraints whose residual the run reports.
+the position constraints fix are solved from them by the engine's solver,
+:func:`tutgen.engine.constraints.kinematics.solve_positions` (the damped Gauss-Newton that also finds the
+derivation's consistent states), starting from the values given for them, if any (which picks the
+branch: a four-bar's open or crossed assembly). Without a value given, the start is the branch the
+figure shows (:func:`tutgen.figure.build.drawn_branch`: for a four-bar the same assembly, open or
+crossed, at the simulation's lengths; for another loop the same sign of its closed form), or, when the
+position analysis has no closed form, the figure's values of those coordinates. The dependent rates
+follow from A q_dot = 0, A_d q_dot_d = -A_i q_dot_i.
 """
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Collection, Mapping
 
 import numpy as np
+import sympy as sp
 
+from tutgen.engine.constraints.kinematics import solve_positions
+from tutgen.engine.constraints.positions import branch_values
 from tutgen.engine.derivation import Derivation
 from tutgen.sim.model import NumericModel
 
@@ -28,9 +34,6 @@ __all__ = ["BAUMGARTE", "baumgarte_rate", "consistent_start", "position_unknowns
 #: tenth of the run, slowly enough that the stabilisation never makes the system stiff (alpha (t1 - t0)
 #: = 10, far below the stiffness test's 10^4), fast enough that they cannot accumulate.
 BAUMGARTE = 10.0
-#: |f| below this (relative to 1 + max |q|) is a root; the Gauss-Newton solve's steps.
-_ROOT_TOLERANCE = 1e-13
-_ITERATIONS = 100
 
 
 def baumgarte_rate(t0: float, t1: float) -> float:
@@ -49,65 +52,73 @@ def position_unknowns(derivation: Derivation) -> tuple[int, ...]:
     return tuple(used[: len(position)])
 
 
-def _position_rows(model: NumericModel) -> list[int]:
-    return [k for k, (_, kind) in enumerate(model.constraints) if kind == "position"]
-
-
 def consistent_start(
-    derivation: Derivation, model: NumericModel, t0: float, q: np.ndarray, qd: np.ndarray
+    derivation: Derivation,
+    model: NumericModel,
+    t0: float,
+    q: np.ndarray,
+    qd: np.ndarray,
+    values: Mapping[str, float] | None = None,
+    guessed: Collection[str] = (),
 ) -> tuple[np.ndarray, np.ndarray] | None:
-    """(q, q_dot) with the position-fixed coordinates solved (starting from their entries of ``q``) and the
-    dependent rates from A q_dot = 0; None when the position constraints have no root from that start."""
-    assert derivation.constraints is not None and model.residual is not None
-    assert model.constraint_jacobian is not None
+    """(q, q_dot) with the position-fixed coordinates solved and the dependent rates from A q_dot = 0;
+    None when the position constraints have no root from the start.
+
+    ``values`` are the parameters' numbers (by name; default: those of the numeric model), ``guessed``
+    the coordinates whose entry of ``q`` was not given (their start is then the figure's branch, see the
+    module's docstring); the others start from their entries of ``q``."""
+    assert derivation.constraints is not None and model.constraint_jacobian is not None
     ck = derivation.constraints.kinematics
+    system = derivation.system
+    coords = system.coordinates
     q, qd = np.array(q, dtype=float), np.array(qd, dtype=float)
-    p = model.parameters(t0, q, qd)
-    rows, unknown = _position_rows(model), list(position_unknowns(derivation))
-    if rows:
-        solved = _gauss_newton(model, p, q, qd, rows, unknown)
+    numbers: dict[sp.Symbol, float] = {}
+    by_name = dict(values) if values is not None else {}
+    for par in system.parameters:
+        if par.name in by_name:
+            numbers[par.symbol] = float(by_name[par.name])
+    numbers |= {c.q: float(q[j]) for j, c in enumerate(coords)}
+    fixed = list(position_unknowns(derivation))
+    if fixed:
+        start = {coords[j].q: float(q[j]) for j in fixed}
+        if all(coords[j].name in guessed for j in fixed):
+            start |= _figure_start(derivation, numbers, fixed)
+        try:
+            solved = solve_positions(system, ck, numbers, start)
+        except KeyError:  # a number is missing (a parameter that is an input): no root from here
+            return None
         if solved is None:
             return None
-        q = solved
-        p = model.parameters(t0, q, qd)
+        for j in fixed:
+            q[j] = solved[coords[j].q]
+    p = model.parameters(t0, q, qd)
     a = np.asarray(model.constraint_jacobian(q, p), dtype=float)
     dep, ind = list(ck.dependent), list(ck.independent)
     qd[dep] = np.linalg.solve(a[:, dep], -a[:, ind] @ qd[ind])
     return q, qd
 
 
-def _gauss_newton(
-    model: NumericModel, p: Any, q: np.ndarray, qd: np.ndarray, rows: list[int], unknown: list[int]
-) -> np.ndarray | None:
-    """Damped Gauss-Newton on the position constraints' residuals in the coordinates ``unknown``: each step
-    solves (J^T J + mu I) dx = J^T r, mu shrinking after a step that lowers |r| and growing after one that
-    does not."""
-    assert model.residual is not None and model.constraint_jacobian is not None
+def _figure_start(
+    derivation: Derivation, numbers: Mapping[sp.Symbol, float], fixed: list[int]
+) -> dict[sp.Symbol, float]:
+    """Where the solve starts for the coordinates ``fixed`` when no value is given for them: on the
+    branch the figure shows (see the module's docstring); empty when there is none to follow."""
+    from tutgen.figure.build import drawn_branch, drawn_values
 
-    def residual(x: np.ndarray) -> np.ndarray:
-        values = model.residual(x, qd, p)
-        return np.array([values[k] for k in rows], dtype=float)
-
-    x = q.copy()
-    r = residual(x)
-    mu = 1e-3
-    tolerance = _ROOT_TOLERANCE * (1 + float(np.max(np.abs(q))))
-    with np.errstate(all="ignore"):
-        for _ in range(_ITERATIONS):
-            if not np.all(np.isfinite(r)):
-                return None
-            if float(np.linalg.norm(r)) <= tolerance:
-                return x
-            j = np.asarray(model.constraint_jacobian(x, p), dtype=float)[np.ix_(rows, unknown)]
-            step = np.linalg.solve(j.T @ j + mu * np.eye(len(unknown)), j.T @ r)
-            trial = x.copy()
-            trial[unknown] -= step
-            r_trial = residual(trial)
-            if float(np.linalg.norm(r_trial)) < float(np.linalg.norm(r)):
-                x, r, mu = trial, r_trial, mu / 3
-            else:
-                mu *= 4
-    return None
+    assert derivation.constraints is not None
+    ck = derivation.constraints.kinematics
+    system = derivation.system
+    coords = [c.q for c in system.coordinates]
+    if ck.positions:  # solved in closed form, one branch: any start reaches it
+        return {}
+    if ck.loop is None:
+        drawn = drawn_values(system)
+        return {coords[j]: drawn[coords[j]] for j in fixed if coords[j] in drawn}
+    shown = drawn_branch(system, ck.loop)
+    if shown is None:
+        return {}
+    sign, assembly = shown
+    return branch_values(ck.loop, numbers, coords, sign, assembly) or {}
 
 
 def residuals_and_multipliers(

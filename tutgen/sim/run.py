@@ -248,6 +248,7 @@ def simulate_system(derivation: Derivation, settings: Settings, spec_file: str) 
             given_rates[c.name] = qd0[-1]
     if errors:
         raise SpecErrors(errors)
+    unstarted = {c for c in guessed if c not in settings.q0 and c not in q0_spec}  # start: the figure's branch
     t0, t1 = (float(x) for x in ((sim.t_start, sim.t_end) if sim is not None else DEFAULT_INTERVAL))
     if settings.t_end is not None:
         t1 = settings.t_end
@@ -264,7 +265,7 @@ def simulate_system(derivation: Derivation, settings: Settings, spec_file: str) 
         alpha = baumgarte_rate(t0, t1)
     model = numeric_model(derivation, float_values, inputs, alpha)
     if derivation.constraints is not None:
-        q0, qd0 = _consistent(derivation, model, t0, q0, qd0, given_rates, where, sim)
+        q0, qd0 = _consistent(derivation, model, t0, q0, qd0, given_rates, where, sim, float_values, unstarted)
     stage("integration", f"t from {t0:g} to {t1:g} s")
     from tutgen.limits import remaining
 
@@ -326,6 +327,8 @@ def _consistent(
     given_rates: Mapping[str, float],
     where: Location,
     sim: Simulation | None,
+    values: Mapping[str, float],
+    unstarted: set[str],
 ) -> tuple[list[float], list[float]]:
     """A constrained spec's initial state on its constraints (tutgen/sim/constrained.py); an error at the
     `simulate` section when the position constraints have no root, or a dependent rate given disagrees."""
@@ -335,7 +338,7 @@ def _consistent(
     ck = derivation.constraints.kinematics if derivation.constraints is not None else None
     assert ck is not None
     independent = ", ".join(f"{coords[j]} = {q0[j]:.6g}" for j in ck.independent)
-    start = consistent_start(derivation, model, t0, np.array(q0), np.array(qd0))
+    start = consistent_start(derivation, model, t0, np.array(q0), np.array(qd0), values, unstarted)
     if start is None:
         raise SpecErrors(
             [

@@ -31,7 +31,15 @@ import sympy as sp
 from tutgen.engine.tidy import tidy
 from tutgen.model.system import ConstraintKind, System
 
-__all__ = ["LoopAnalysis", "LoopBranch", "assembly_at", "assembly_ranges", "branch_at", "loop_analysis"]
+__all__ = [
+    "LoopAnalysis",
+    "LoopBranch",
+    "assembly_at",
+    "assembly_ranges",
+    "branch_at",
+    "branch_values",
+    "loop_analysis",
+]
 
 _SEED = 20261202
 _DRAWS = 12  # random numbers at which both branches are checked
@@ -325,6 +333,39 @@ def branch_at(
         if ok:
             return branch.sign
     return None
+
+
+def branch_values(
+    analysis: LoopAnalysis,
+    values: Mapping[sp.Symbol, float],
+    coordinates: Sequence[sp.Symbol],
+    sign: int,
+    assembly: str | None = None,
+) -> dict[sp.Symbol, float] | None:
+    """The dependent coordinates on one branch at ``values`` (numbers for the parameters and the other
+    coordinates): for a four-bar with ``assembly`` given, the branch of that assembly (``"open"`` or
+    ``"crossed"``: at other lengths the same assembly may have the other sign), else the branch of
+    ``sign``. ``None`` where the branch is not real there (the loop cannot be assembled) or a number is
+    missing. Angles are given in [-pi, pi]."""
+    table = {k: sp.Float(v) for k, v in values.items()}
+    found: list[tuple[int, dict[sp.Symbol, float]]] = []
+    for branch in analysis.branches:
+        out: dict[sp.Symbol, float] = {}
+        for j, e in branch.positions:
+            try:
+                got = complex(sp.N(e.xreplace(table)))
+            except (TypeError, ValueError):
+                return None
+            if abs(got.imag) > 1e-9 or not math.isfinite(got.real):
+                return None
+            angle = j == analysis.eliminated or analysis.is_angle
+            out[coordinates[j]] = math.remainder(got.real, 2 * math.pi) if angle else got.real  # in [-pi, pi]
+        found.append((branch.sign, out))
+    if assembly is not None and analysis.sides:
+        for _sign, out in found:
+            if assembly_at(analysis, {**values, **out}) == assembly:
+                return out
+    return next((out for s, out in found if s == sign), None)
 
 
 def assembly_ranges(

@@ -13,7 +13,7 @@ import sympy as sp
 from tutgen.engine.constraints.positions import LoopAnalysis, assembly_at, assembly_ranges, branch_at
 from tutgen.engine.steps import StepKind
 from tutgen.engine.tidy import tidy
-from tutgen.figure.build import draw_system
+from tutgen.figure.build import drawn_values
 from tutgen.model.system import ConstraintKind, System
 from tutgen.render.blocks import SolutionContext, boxed, display, math, para, section, text
 from tutgen.render.printer import TexPrinter
@@ -221,15 +221,7 @@ def _drawn_values(system: System) -> dict[sp.Symbol, float] | None:
     """The numbers of the figure at the head of the solution (its sizes and its pose), when it is drawn."""
     if system.figure is not None and not system.figure.generated:
         return None
-    drawing = draw_system(system)
-    by_name = {p.name: p.symbol for p in system.parameters} | {x.name: x.q for x in system.coordinates}
-    values: dict[sp.Symbol, float] = {
-        p.symbol: float(p.value) for p in system.parameters if p.value is not None and p.value.is_number
-    }
-    for name, value in (*drawing.sizes, *drawing.at):
-        if name in by_name:
-            values[by_name[name]] = value
-    return values
+    return drawn_values(system)
 
 
 def _in_order(tex: TexPrinter, expr: sp.Expr, coordinates: list[sp.Symbol], lead: sp.Symbol | None = None) -> str:
