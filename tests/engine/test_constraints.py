@@ -10,6 +10,7 @@ as they are.
 
 from __future__ import annotations
 
+import math
 import random
 from typing import Any
 
@@ -309,3 +310,21 @@ def test_slider_crank_pin_force_is_newton_eulers() -> None:
     rates = cd.kinematics.rates
     assert sp.simplify(rates[co["beta"].qd] - beta_dot) == 0
     assert sp.simplify(rates[co["s"].qd] - s_dot) == 0
+
+
+def test_a_loop_that_closes_only_far_from_the_reference_is_solved() -> None:
+    """y^2 = -cos(phi) - 1/10 holds only for |phi| >= 1.67 (past the first draws' [-1.5, 1.5]): the states
+    are then drawn over the whole turn, not the constraint reported as never holding."""
+    from tutgen.engine.constraints.kinematics import consistent_states
+    from tutgen.engine.pipeline import derive
+    from tutgen.spec.validate import load_system_text
+
+    system = load_system_text(_BASE + "constraints: {loop: y**2 + cos(phi) + 1/10}\nindependent_coordinates: [x, phi]")
+    d = derive(system)
+    ck = d.constraints.kinematics
+    states = list(consistent_states(system, ck.functions, ck.dependent, 4))
+    assert len(states) == 4
+    phi, y = system.coordinates[1].q, system.coordinates[2].q
+    for state in states:
+        assert abs(float(state.values[phi])) > 1.6
+        assert float(state.values[y]) ** 2 + math.cos(float(state.values[phi])) + 0.1 == pytest.approx(0, abs=1e-12)

@@ -14,9 +14,10 @@ q_dot_d = B q_dot_i with B = -A_d^-1 A_i, and q_dot = T q_dot_i, where T's row o
 coordinate is a unit row and that of a dependent one the row of B.
 
 The numeric checks work at consistent states: random values of the parameters without one (in
-[0.5, 2]) and of the independent coordinates (in [-1.5, 1.5]), the dependent ones then solved from the
-position constraints (:func:`damped_gauss_newton` from a few starting points). The random numbers are seeded,
-so the same spec gives the same states and the same messages.
+[0.5, 2]) and of the independent coordinates (in [-1.5, 1.5], then in [-pi, pi] if too few close there),
+the dependent ones then solved from the position constraints (:func:`damped_gauss_newton` from a few
+starting points). The random numbers are seeded, so the same spec gives the same states and the same
+messages.
 """
 
 from __future__ import annotations
@@ -47,6 +48,8 @@ _SEED = 20261202
 #: how many random draws of the independent coordinates are tried before a position constraint is said
 #: to hold at no configuration, and the starting points of each solve
 _DRAWS = 8
+#: the half-widths of the ranges the independent coordinates are drawn from, in turn (see consistent_states)
+_SPREADS = (1.5, float(mpmath.pi))
 _STARTS = (0.3, -0.7, 1.3, 2.5, -2.0)
 #: a singular value below this (relative to the largest) makes A rank-deficient
 _RANK_TOLERANCE = 1e-9
@@ -175,20 +178,25 @@ def consistent_states(
     position, fixed, others = _position_unknowns(system, functions, dependent)
     solver = _Solver(position, fixed, others) if position else None
     found = 0
-    for _ in range(_DRAWS * count):
-        if found == count:
+    # first near the reference configuration, then, if too few draws close there (a loop that closes only
+    # with the crank near theta = pi), over the whole turn: the first pass's states are kept either way
+    for spread in _SPREADS:
+        for _ in range(_DRAWS * count):
+            if found == count:
+                return
+            values = _free_values(system, rng)
+            for c in coords:
+                if c.q not in fixed:
+                    values[c.q] = mpmath.mpf(rng.uniform(-spread, spread))
+            if solver is not None:
+                root = solver.solve([values[s] for s in others])
+                if root is None:
+                    continue
+                values.update(dict(zip(fixed, root, strict=True)))
+            found += 1
+            yield State(values)
+        if solver is None:
             return
-        values = _free_values(system, rng)
-        for c in coords:
-            if c.q not in fixed:
-                values[c.q] = mpmath.mpf(rng.uniform(-1.5, 1.5))
-        if solver is not None:
-            root = solver.solve([values[s] for s in others])
-            if root is None:
-                continue
-            values.update(dict(zip(fixed, root, strict=True)))
-        found += 1
-        yield State(values)
 
 
 def damped_gauss_newton(
@@ -357,7 +365,7 @@ def constraint_kinematics(system: System) -> ConstraintKinematics:
         held = [c for c in system.constraints if c.kind is ConstraintKind.POSITION]
         raise DerivationError(
             f"the position constraints ({', '.join(c.name for c in held)}) "
-            f"hold at no configuration tried ({_DRAWS} random values of "
+            f"hold at no configuration tried ({_DRAWS * len(_SPREADS)} random values of "
             f"{', '.join(system.independent_coordinates)}): they are inconsistent, or the loop does not close; "
             "check the lengths and the constraint expressions",
             held[0].origin,
