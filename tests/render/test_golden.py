@@ -1,6 +1,7 @@
 """Golden files: every spec in specs/ rendered as Markdown and LaTeX, compared as exact text (not the
 fully symbolic 6-DOF arms of HEAVY_SPECS: megabytes of text no reviewer reads; their dynamics are
-checked against Pinocchio and the nested engine instead).
+checked against Pinocchio and the nested engine instead). A heavy spec that has golden files (the
+four-bar, ~10 s to derive) is compared in the ``-m slow`` run only.
 
 Regenerate on purpose only, with ``pytest --update-golden``, and review the diff.
 """
@@ -23,7 +24,12 @@ def rendered(spec: Path, fmt: str) -> str:
 
 
 @pytest.mark.parametrize("fmt", FORMATS)
-@pytest.mark.parametrize("spec", [p for p in all_specs() if p.stem not in HEAVY_SPECS], ids=lambda p: p.stem)
+# a heavy spec with golden files (the four-bar) is compared too, with ``-m slow`` (tests/conftest.py marks it)
+@pytest.mark.parametrize(
+    "spec",
+    [p for p in all_specs() if p.stem not in HEAVY_SPECS or (GOLDEN / f"{p.stem}.md").exists()],
+    ids=lambda p: p.stem,
+)
 def test_render_matches_golden(spec: Path, fmt: str, request: pytest.FixtureRequest) -> None:
     golden = GOLDEN / f"{spec.stem}.{fmt}"
     actual = rendered(spec, fmt)
