@@ -36,6 +36,9 @@ def _shown(parts: list[dict[str, str]]) -> str:
         pytest.param("the condition -tau1 = 0.", r"the condition $-\tau_1 = 0$.", id="sign-and-tail"),
         pytest.param("the inertia J_m = 3.3e-05: it", r"the inertia $J_{m} = 33 \times 10^{-6}$: it", id="e-notation"),
         pytest.param("a body at rest is in a state", "a body at rest is in a state", id="words-stay-words"),
+        pytest.param(
+            "M, D and K of the linear model; D'Alembert", "$M$, $D$ and $K$ of the linear model; D'Alembert", id="mdk"
+        ),
     ],
 )
 def test_engine_sentences_get_typeset_maths(sentence: str, expected: str) -> None:

@@ -9,7 +9,8 @@ the maths in such a sentence and returns it as parts (text, and maths in LaTeX) 
 2. the system's own names: a coordinate, its rate ``<name>_dot`` and acceleration ``<name>_ddot``, a
    parameter (a quoted ``'theta'`` too), with a power ``^2`` after it;
 3. other ASCII maths: a power ``n^2``, an indexed ``H_11``/``J_m``, a number in e-notation, a Greek name,
-   and the one-letter names of the results (``H``, ``C``, ``G``, ``Q``, ``T``, ``U``);
+   and the one-letter names of the results (``H``, ``C``, ``G``, ``Q``, ``T``, ``U``, and the linear
+   model's ``M``, ``D``, ``K``);
 4. neighbouring maths joined with the operators and numbers between them (``n^2 J_m q6_dot^2 / 2`` is
    one formula), and a minus sign in front of one taken in.
 
@@ -148,6 +149,7 @@ _OTHER = (
     (r"\b(H|J|I|C|G|Q|T|U)_([0-9]+(?:,[0-9]+)?|[a-z])\b", _indexed),
     (r"\b([A-Za-z])\^(\d+|T)\b", lambda m: f"{m.group(1)}^{{{m.group(2)}}}"),
     (r"\b\d+(?:\.\d+)?e-?\d+\b", lambda m: format_number(float(m.group(0)))),
-    (r"\b[HCGQTUq]\b(?!')", lambda m: m.group(0)),  # the matrices, energies and q, by one letter
+    # the matrices (the linear model's M, D, K too), the energies and q, by one letter
+    (r"\b[HCGQTUMDKq]\b(?!')", lambda m: m.group(0)),
     (r"\b(" + "|".join(_GREEK) + r")\b", lambda m: _letter(m.group(1))),
 )

@@ -211,14 +211,15 @@ def _eigen_verdict(d: Derivation, modes: tuple[Mode, ...], damping: sp.Matrix, s
     scale = max([1.0] + [abs(m.eigenvalue) for m in modes])
     worst = max(m.eigenvalue.real for m in modes)
     if worst > ZERO * scale:
-        return "unstable", f"an eigenvalue has a positive real part ({worst:.4g} 1/s): a small disturbance grows"
+        return "unstable", f"an eigenvalue has a positive real part ({worst:.4g} per second): a small disturbance grows"
     k = sp.Matrix(d.numeric(stiffness))
     c = sp.Matrix(d.numeric(damping))
     n = k.shape[0]
     neutral = [i for i in range(n) if all(k[i, j] == 0 and k[j, i] == 0 for j in range(n))]
     zero = [m for m in modes if abs(m.eigenvalue) <= ZERO * scale]
     names = [d.system.coordinates[i].name for i in neutral]
-    along = f"neutral along {', '.join(names)}, which may rest anywhere; " if neutral else ""
+    # quoted, so a worked solution typesets the names (tutgen/render/wording.py)
+    along = f"neutral along {', '.join(repr(x) for x in names)}, which may rest anywhere; " if neutral else ""
     if len(zero) > 2 * len(neutral) or (zero and not neutral):
         return "undetermined", "an eigenvalue is 0: the linear model has a neutral direction and does not decide"
     rest = [m for m in modes if abs(m.eigenvalue) > ZERO * scale]
@@ -229,7 +230,13 @@ def _eigen_verdict(d: Derivation, modes: tuple[Mode, ...], damping: sp.Matrix, s
     keep = [i for i in range(n) if i not in neutral]
     kr = k.extract(keep, keep)
     if c == sp.zeros(n, n) and kr == kr.T and all(m.is_positive for m in _minors(kr)):
-        return "stable", along + "the eigenvalues are imaginary and K is positive definite: undamped small oscillations"
+        if not neutral:
+            return "stable", "the eigenvalues are imaginary and K is positive definite: undamped small oscillations"
+        # K itself is only semi-definite then (the neutral rows and columns are zero)
+        return "stable", along + (
+            "the other eigenvalues are imaginary and K is positive definite in the other coordinates: undamped "
+            "small oscillations"
+        )
     return "undetermined", "eigenvalues lie on the imaginary axis: the linear model does not decide"
 
 

@@ -389,7 +389,7 @@ def _eigen_verdict(values: list[complex], damping: sp.Matrix, stiffness: sp.Matr
     scale = max([1.0] + [abs(v) for v in values])
     worst = max(v.real for v in values)
     if worst > ZERO * scale:
-        return "unstable", f"an eigenvalue has a positive real part ({worst:.4g} 1/s): a small disturbance grows"
+        return "unstable", f"an eigenvalue has a positive real part ({worst:.4g} per second): a small disturbance grows"
     if any(abs(v) <= ZERO * scale for v in values):
         return "undetermined", "an eigenvalue is 0: the linear model has a neutral direction and does not decide"
     if all(v.real < -ZERO * scale for v in values):
