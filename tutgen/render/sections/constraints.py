@@ -15,7 +15,7 @@ from tutgen.engine.steps import StepKind
 from tutgen.engine.tidy import tidy
 from tutgen.figure.build import drawn_values
 from tutgen.model.system import ConstraintKind, System
-from tutgen.render.blocks import SolutionContext, boxed, display, math, para, section, text
+from tutgen.render.blocks import SolutionContext, boxed, display, math, para, prose, section, text
 from tutgen.render.printer import TexPrinter
 
 
@@ -205,6 +205,7 @@ def reduced_equations(c: SolutionContext) -> dict[str, Any] | None:
         )
     ]
     sec["blocks"].append(display(",\\quad ".join(shown)))
+    sec["blocks"] += _dependent_values(c, cd.equations_of_motion)
     for e, f in zip(cd.equations_of_motion, cd.generalized_forces, strict=True):
         sec["blocks"].append(boxed(f"{tex.ordered(num(e + f))} = {tex(num(f))}"))
     if cd.accelerations:
@@ -215,6 +216,52 @@ def reduced_equations(c: SolutionContext) -> dict[str, Any] | None:
             )
         )
     return sec
+
+
+def _dependent_values(c: SolutionContext, equations: Any) -> list[dict[str, Any]]:
+    """What the dependent coordinates left in the reduced equations stand for: the functions of the
+    independent ones that the position analysis gives, on which branch (a four-bar's assembly), so that
+    the equations are in the independent coordinates alone."""
+    s = c.s
+    ck = c.d.constraints.kinematics if c.d.constraints is not None else None
+    if ck is None:
+        return []
+    left = [s.coordinates[j] for j in ck.dependent if any(sp.sympify(e).has(s.coordinates[j].q) for e in equations)]
+    if not left:
+        return []
+    ind = [s.coordinates[j] for j in ck.independent]
+    names = " and ".join(", ".join(f"${x.latex}$" for x in left).rsplit(", ", 1))
+    of = ", ".join(f"${x.latex}$" for x in ind)
+    verb = "is" if len(left) == 1 else "are"
+    if ck.positions and len(ck.positions) == 1:
+        where = "the position analysis above gives"
+    elif ck.loop is not None:
+        values = _drawn_values(s)
+        shape = assembly_at(ck.loop, values) if values is not None else None
+        sign = branch_at(ck.loop, values, [x.q for x in s.coordinates]) if values is not None else None
+        word = {1: "+", -1: "−"}
+        if shape is not None and sign is not None:
+            other = "crossed" if shape == "open" else "open"
+            where = (
+                f"the closed form of the position analysis above gives, on the {shape} assembly the figure "
+                f"shows (the {word[sign]} sign; the {other} assembly, with the {word[-sign]} sign, has the same "
+                "equation with its own values)"
+            )
+        elif sign is not None:
+            where = (
+                f"the closed form of the position analysis above gives, on the branch with the {word[sign]} sign "
+                "(the one the figure shows)"
+            )
+        else:
+            where = "the closed form of the position analysis above gives, on the branch of the motion"
+    elif ck.positions:
+        where = "the position analysis above gives, on the branch of the motion"
+    else:
+        where = "the position constraints give (numerically) on the branch of the motion"
+    they = "they are the functions" if len(left) > 1 else "it is the function"
+    equation = "equations are" if len(ind) > 1 else "equation is"
+    sentence = f"In these, {names} {verb} not free: {they} of {of} that {where}. The {equation} thus in {of} alone."
+    return [para(prose(sentence))]
 
 
 def _drawn_values(system: System) -> dict[sp.Symbol, float] | None:
