@@ -81,6 +81,20 @@ def test_pdf_log_is_capped(texdir: Path, monkeypatch: pytest.MonkeyPatch) -> Non
     assert_nothing_left(texdir)
 
 
+def test_pdf_log_stopped_by_the_file_size_cap_is_reported_as_such(
+    texdir: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """TeX filling its log to RLIMIT_FSIZE between two polls of the watch (a fast TeX, or a loaded test
+    run whose watch wakes late) is the size limit, not "a tutgen bug": CI saw that message once."""
+    import tutgen.render.pdf as pdf
+
+    monkeypatch.setattr(pdf, "MAX_OUTPUT_BYTES", 1024 * 1024)
+    monkeypatch.setattr(pdf, "POLL_SECONDS", 30.0)  # the watch never looks: only the cap stops TeX
+    with pytest.raises(PdfError, match="MiB of log and output"):
+        compile_pdf(CHATTY, timeout=60)
+    assert_nothing_left(texdir)
+
+
 def test_pdf_document_error_is_reported_and_cleaned(texdir: Path) -> None:
     with pytest.raises(PdfError, match="could not compile"):
         compile_pdf("\\documentclass{article}\\begin{document}\\undefinedmacro\\end{document}\n", timeout=60)

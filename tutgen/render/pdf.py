@@ -155,27 +155,35 @@ def _watch(proc: subprocess.Popen[bytes], work: Path, limit: float, given: int =
     while True:
         try:
             proc.wait(timeout=POLL_SECONDS)
-            return None
         except subprocess.TimeoutExpired:
             pass
+        else:  # ended on its own, or by RLIMIT_FSIZE: a fast TeX fills one file to the cap between two polls
+            return "size" if proc.returncode != 0 and _over_size(work, given, MAX_OUTPUT_BYTES) else None
         if time.monotonic() >= ends:
             return "time"
-        if _size(work) - given > MAX_OUTPUT_BYTES:
+        if _over_size(work, given, MAX_OUTPUT_BYTES + 1):
             return "size"
 
 
-def _size(work: Path) -> int:
-    total = 0
+def _over_size(work: Path, given: int, cap: int) -> bool:
+    """Whether LaTeX's output reached ``cap`` bytes: in all (less the ``given`` input files), or in one
+    file (``RLIMIT_FSIZE`` stops each file at exactly MAX_OUTPUT_BYTES)."""
+    sizes = _sizes(work)
+    return sum(sizes) - given >= cap or any(size >= MAX_OUTPUT_BYTES for size in sizes)
+
+
+def _sizes(work: Path) -> list[int]:
+    sizes: list[int] = []
     try:
         with os.scandir(work) as entries:
             for entry in entries:
                 try:
-                    total += entry.stat(follow_symlinks=False).st_size
+                    sizes.append(entry.stat(follow_symlinks=False).st_size)
                 except OSError:
                     pass
     except OSError:
         pass
-    return total
+    return sizes
 
 
 def _limit_file_size(pid: int) -> None:
