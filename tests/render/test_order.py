@@ -97,3 +97,32 @@ def test_c_prime_entries_take_their_common_factor_out() -> None:
     section = next(s for s in view["sections"] if s["title"] == "Matrix form")
     shown = " ".join(b.get("tex", "") for b in section["blocks"])
     assert r"- m_2 a_1 a_2 \sin\theta_2\, \left(\dot{\theta}_1 + \dot{\theta}_2\right)" in shown
+
+
+def test_a_square_free_coefficient_is_not_factored(monkeypatch) -> None:
+    """``sympy.factor`` (multivariate Hensel lifting) is called only on a mass's coefficient whose square-free
+    decomposition has a square in the coordinates' functions: a planar 5-link chain's H coefficients, all
+    square-free, ran for minutes in it (issue 17). p08's square is still found, through ``factor``."""
+    import tutgen.render.order as order
+
+    calls: list[sp.Expr] = []
+    real = sp.factor
+
+    def counting(expr: sp.Expr, *args: object, **kwargs: object) -> sp.Expr:
+        calls.append(expr)
+        return real(expr, *args, **kwargs)
+
+    monkeypatch.setattr(order.sp, "factor", counting)
+    system, d, _ = solved(str(P08))
+    tex = TexPrinter(system)
+    assert r"m_2 \left(l_1 + l_2 \cos\theta_2\right)^{2}" in tex(d.mass_matrix[0, 0])
+    assert calls, "p08's square is found by factoring its coefficient"
+    calls.clear()
+    system, _, _ = solved(str(P05))
+    names = {str(s): s for s in _symbols(system)}
+    m2, a1, a2, t1, t2 = (names[n] for n in ("m2", "a1", "a2", "theta1", "theta2"))
+    # |r|² of a link's end: (a_1 cos θ_1 + a_2 cos θ_2)² + (a_1 sin θ_1 + a_2 sin θ_2)², square-free expanded
+    r2 = sp.expand((a1 * sp.cos(t1) + a2 * sp.cos(t2)) ** 2 + (a1 * sp.sin(t1) + a2 * sp.sin(t2)) ** 2)
+    printed = TexPrinter(system)(m2 * r2)
+    assert r"\right)^{2}" not in printed
+    assert calls == []

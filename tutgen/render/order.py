@@ -262,6 +262,25 @@ def _generators(expr: sp.Expr) -> int:
     return len(expr.free_symbols | expr.atoms(sp.Function))
 
 
+def _may_hold_square(coefficient: sp.Expr, levels: _Levels) -> bool:
+    """Whether ``sp.factor(coefficient)`` can hold a square of a function of the coordinates: its
+    square-free decomposition (gcd-based, cheap) has a part of multiplicity 2 in them. ``factor``'s
+    multivariate Hensel lifting is what costs (a planar 5-link chain's H coefficients ran for minutes, all
+    square-free); a coefficient without such a part is not factored, which prints it exactly as before.
+    When the decomposition cannot be taken, ``True``: the old path decides."""
+    coordinates = set(levels.coordinates)
+    try:
+        _, parts = sp.sqf_list(coefficient)
+    except sp.PolynomialError:
+        try:
+            _, parts = sp.sqf_list(sp.numer(sp.together(coefficient)))
+        except (sp.PolynomialError, NotImplementedError):
+            return True
+    except NotImplementedError:
+        return True
+    return any(k == 2 and part.free_symbols & coordinates for part, k in parts)
+
+
 def _perfect_squares(expr: sp.Expr, levels: _Levels) -> sp.Expr | None:
     """A configuration-dependent sum with a mass's coefficient a perfect square, printed as the square
     (p08's ``m_1 l_1^2 + m_2 (l_1 + l_2 \\cos\\theta_2)^2``, not its three expanded terms): the terms
@@ -283,7 +302,11 @@ def _perfect_squares(expr: sp.Expr, levels: _Levels) -> sp.Expr | None:
     for mass in sorted(groups, key=lambda m: (m == 1, sp.default_sort_key(m))):
         coefficient = sp.Add(*groups[mass])
         try:
-            factored = sp.factor(coefficient) if _generators(coefficient) <= SQUARE_GENERATORS else coefficient
+            factored = (
+                sp.factor(coefficient)
+                if _generators(coefficient) <= SQUARE_GENERATORS and _may_hold_square(coefficient, levels)
+                else coefficient
+            )
         except (sp.PolynomialError, NotImplementedError):
             factored = coefficient
         sign, body = positive_lead(factored)
