@@ -262,6 +262,22 @@ def _generators(expr: sp.Expr) -> int:
     return len(expr.free_symbols | expr.atoms(sp.Function))
 
 
+def _square_degree(coefficient: sp.Expr, coordinates: set[sp.Symbol]) -> bool:
+    """Whether some generator in the coordinates has degree 2 or more in ``coefficient``, the polynomial:
+    a square ``f**2`` with a generator ``g`` of the coordinates in ``f`` has degree ``2 deg_g f`` in ``g``
+    and so has every multiple of it, so without one there is no such square (a planar chain's H: every
+    cosine of a joint-angle sum to the first power). A power that is not a positive integer, or a
+    coordinate inside one, is ``True``: the square-free decomposition decides."""
+    for term in sp.Add.make_args(coefficient):
+        for factor in sp.Mul.make_args(term):
+            if not factor.free_symbols & coordinates:
+                continue
+            _, exp = factor.as_base_exp()  # exp(q) is (E, q): a power that is no integer
+            if not (exp.is_Integer and exp > 0) or exp >= 2:
+                return True
+    return False
+
+
 def _may_hold_square(coefficient: sp.Expr, levels: _Levels) -> bool:
     """Whether ``sp.factor(coefficient)`` can hold a square of a function of the coordinates: its
     square-free decomposition (gcd-based, cheap) has a part of multiplicity 2 in them. ``factor``'s
@@ -269,6 +285,8 @@ def _may_hold_square(coefficient: sp.Expr, levels: _Levels) -> bool:
     square-free); a coefficient without such a part is not factored, which prints it exactly as before.
     When the decomposition cannot be taken, ``True``: the old path decides."""
     coordinates = set(levels.coordinates)
+    if not _square_degree(coefficient, coordinates):
+        return False
     try:
         _, parts = sp.sqf_list(coefficient)
     except sp.PolynomialError:
