@@ -198,42 +198,175 @@ def determinant_blocks(c: SolutionContext) -> list[Block]:
 
 def singular_sentence(det: sp.Expr, coordinates: list[sp.Symbol], tex: Any) -> str:
     """What ``det H`` says about where ``H`` is singular, derived from it (maths between ``$``): never (no
-    real zero, e.g. ``2 - \\cos^2\\theta_2 \\ge 1``), where (the zeros in its one coordinate), or, when
-    that is not decided here (several coordinates), that it is singular where the determinant vanishes.
-    Other symbols (masses, lengths) are taken positive, and the sentence says so."""
+    real zero, e.g. ``2 - \\cos^2\\theta_2 \\ge 1``), where (the zeros in its one coordinate, or of its
+    factors in one coordinate each), or, when that is not decided here, that it is singular where the
+    determinant vanishes. Other symbols (masses, lengths) are taken positive, and the sentence says so.
+
+    The closed forms come first (:func:`least_value`, :func:`factor_zeros`: a sum of positive terms, a
+    product of a sine, a cosine or a coordinate and such sums); sympy's ``solveset`` and ``minimum`` only
+    for what they leave, in one coordinate (they took 40 % of a sheet variant's rendering)."""
     det = sp.sympify(det)
     qs = [q for q in coordinates if det.has(q)]
     params = sorted(det.free_symbols - set(coordinates), key=str)
     positive = {p: sp.Dummy(p.name, positive=True) for p in params}
+    back = {v: k for k, v in positive.items()}
     assumed = " (for positive values of the parameters)" if params else ""
+    least = least_value(det.subs(positive), set(qs))
+    if least is not None:
+        return _never_zero(least.subs(back), qs, assumed, tex)
+    if positive_over_square(det.subs(positive), set(qs)):
+        return _never_zero(None, qs, assumed, tex)
+    zeros = factor_zeros(det.subs(positive), qs)
+    if zeros is not None:
+        where = ",\\ ".join(f"{tex(q)} = {tex(z.subs(back))}" for q, z in zeros)
+        others = " (whatever the other coordinates)" if len(qs) > 1 else ""
+        return f"$H$ is singular where it vanishes{assumed}: at ${where}${others}."
     if len(qs) == 1:
         q = qs[0]
         try:
-            zeros = sp.solveset(det.subs(positive), q, sp.S.Reals)
+            found = sp.solveset(det.subs(positive), q, sp.S.Reals)
         except Exception:  # sympy cannot decide (it raises many kinds, mpmath's NoConvergence too): unknown
-            zeros = None
-        if zeros is sp.S.EmptySet:
-            back = {v: k for k, v in positive.items()}
-            why = ""
-            try:  # its least value, the reason it is never zero (2 - cos^2 θ_2 ≥ 1 since cos^2 ≤ 1)
+            found = None
+        if found is sp.S.EmptySet:
+            try:  # its least value, the reason it is never zero (2 + cos θ_2 ≥ 1 since cos ≥ -1)
                 from sympy.calculus.util import minimum
 
                 least = minimum(det.subs(positive), q, sp.S.Reals)
-                bound = tex(least.subs(back))
-                # a bound too long for a line of prose is left out: the sentence still says what was derived
-                if least.is_positive and tex_width(bound) <= LINE_WIDTH_PT / 3:
-                    why = f", since $\\det H \\ge {bound} > 0$ for every ${tex(q)}$"
             except Exception:  # no closed form, or no convergence (mpmath): the zeros alone decide
-                why = ""
-            return (
-                f"It is never zero{assumed}{why}: it has no real zero in ${tex(q)}$, so $H$ is invertible in "
-                "every configuration and the equations can always be solved for the accelerations."
-            )
-        if isinstance(zeros, sp.FiniteSet):
-            back = {v: k for k, v in positive.items()}
-            where = ",\\ ".join(f"{tex(q)} = {tex(z.subs(back))}" for z in zeros)
+                least = None
+            return _never_zero(least.subs(back) if least is not None and least.is_positive else None, qs, assumed, tex)
+        if isinstance(found, sp.FiniteSet):
+            where = ",\\ ".join(f"{tex(q)} = {tex(z.subs(back))}" for z in found)
             return f"$H$ is singular where it vanishes{assumed}: at ${where}$."
     return "$H$ is singular in the configurations where it vanishes, if any."
+
+
+def _never_zero(least: sp.Expr | None, qs: list[sp.Symbol], assumed: str, tex: Any) -> str:
+    """The sentence for a determinant with no real zero, with its least value (or a lower bound) when it is
+    known and short enough for a line of prose."""
+    why = ""
+    if least is not None:
+        bound = tex(least)
+        if tex_width(bound) <= LINE_WIDTH_PT / 3:
+            names = [f"${tex(q)}$" for q in qs]
+            every = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+            why = (
+                f", since $\\det H \\ge {bound} > 0$ for every {every}"
+                if len(qs) == 1
+                else (f", since $\\det H \\ge {bound} > 0$ for all {every}")
+            )
+    zero = f"it has no real zero in ${tex(qs[0])}$" if len(qs) == 1 else "it has no real zero"
+    return (
+        f"It is never zero{assumed}{why}: {zero}, so $H$ is invertible in "
+        "every configuration and the equations can always be solved for the accelerations."
+    )
+
+
+def _even_power(factor: sp.Expr) -> bool:
+    base, exp = factor.as_base_exp()
+    return bool(exp.is_Integer and exp > 0 and exp % 2 == 0 and base.is_extended_real is not False)
+
+
+def least_value(det: sp.Expr, coordinates: set[sp.Symbol]) -> sp.Expr | None:
+    """A positive lower bound of ``det`` over every configuration when one is read off its terms: expanded
+    (as it is, with every ``\\cos^2 x`` written ``1 - \\sin^2 x``, or every ``\\sin^2 x`` written ``1 -
+    \\cos^2 x``), each term a positive coefficient times even powers of functions of the coordinates, and
+    some terms free of them: their sum is the bound (p05's ``m_1 m_2 a_1^2 a_2^2``; the least value itself
+    where every even power can vanish together, as it can in one coordinate). ``None`` when no form is
+    such a sum; the parameters in ``det`` must already be positive symbols."""
+    x = sp.Wild("x")
+    forms = (det, det.replace(sp.cos(x) ** 2, 1 - sp.sin(x) ** 2), det.replace(sp.sin(x) ** 2, 1 - sp.cos(x) ** 2))
+    for form in forms:
+        free: list[sp.Expr] = []
+        for term in sp.Add.make_args(sp.expand(form)):
+            coefficient, varying = term.as_independent(*coordinates, as_Add=False)
+            if not coefficient.is_positive:
+                break
+            if varying == 1:
+                free.append(coefficient)
+            elif not all(_even_power(f) for f in sp.Mul.make_args(varying)):
+                break
+        else:
+            if free:
+                return sp.Add(*free)
+    for form in forms:
+        least = _quadratic_least(sp.expand(form), coordinates)
+        if least is not None:
+            return least
+    return None
+
+
+def positive_over_square(det: sp.Expr, coordinates: set[sp.Symbol]) -> bool:
+    """Whether ``det``, with every ``\\cos^2 x`` written ``1 - \\sin^2 x``, is ``A + B \\sin^2 x`` in one
+    angle ``x`` with ``A > 0`` and ``A + B > 0``: a line in ``\\sin^2 x``, which stays in ``[0, 1]``, is
+    positive at both ends and so everywhere (the tilting plate's rotor, where ``B`` has no sign).
+    """
+    x = sp.Wild("x")
+    form = sp.expand(det.replace(sp.cos(x) ** 2, 1 - sp.sin(x) ** 2))
+    squares = {f.base for f in form.atoms(sp.Pow) if isinstance(f.base, sp.sin) and f.exp == 2}
+    if len(squares) != 1:
+        return False
+    s = sp.Dummy("s")
+    line = form.subs(squares.pop() ** 2, s)
+    if line.free_symbols & coordinates:
+        return False
+    try:
+        poly = sp.Poly(line, s)
+    except sp.PolynomialError:
+        return False
+    if poly.degree() != 1:
+        return False
+    b, a = poly.all_coeffs()
+    return bool(a.is_positive and sp.factor(a + b).is_positive)
+
+
+def _quadratic_least(det: sp.Expr, coordinates: set[sp.Symbol]) -> sp.Expr | None:
+    """``c - b^2/(4a)`` of ``a u^2 + b u + c`` in one function ``u`` of the coordinates, when ``a > 0`` and
+    ``b^2 < 4ac``: its least value over every real ``u``, so a lower bound over a turn (p08's ``m_1 l_1^2 +
+    m_2 (l_1 + l_2 \\cos\\theta_2)^2`` times ``m_2 l_2^2``: ``m_1 m_2 l_1^2 l_2^2``)."""
+    varying = {a for a in det.atoms(sp.Function, sp.Symbol) if a.free_symbols & coordinates}
+    generators = {a for a in varying if not any(a != b and b.has(a) for b in varying)}
+    if len(generators) != 1:
+        return None
+    u = generators.pop()
+    try:
+        poly = sp.Poly(det, u)
+    except sp.PolynomialError:
+        return None
+    if poly.degree() != 2 or any(c.free_symbols & coordinates for c in poly.all_coeffs()):
+        return None
+    a, b, c = poly.all_coeffs()
+    if not a.is_positive or not sp.factor(b**2 - 4 * a * c).is_negative:
+        return None
+    least = sp.factor(c - b**2 / (4 * a))
+    return least if least.is_positive else None
+
+
+def factor_zeros(det: sp.Expr, coordinates: list[sp.Symbol]) -> list[tuple[sp.Symbol, sp.Expr]] | None:
+    """The zeros of a product whose factors are positive (free of the coordinates, or with a
+    :func:`least_value`) but for powers of ``\\sin q``, ``\\cos q`` or ``q`` itself: each such factor's
+    zeros in a turn, ``(q, value)`` in the coordinates' order (the top's ``\\sin^2\\theta``: ``θ = 0, π``).
+    ``None`` when a factor is none of these."""
+    zeros: dict[sp.Symbol, list[sp.Expr]] = {}
+    for factor in sp.Mul.make_args(sp.factor_terms(det)):
+        if not factor.free_symbols & set(coordinates):
+            if not factor.is_positive:
+                return None
+            continue
+        base, exp = factor.as_base_exp()
+        if not (exp.is_Integer and exp > 0):
+            return None
+        if base in coordinates:
+            zeros.setdefault(base, []).append(sp.S.Zero)
+        elif isinstance(base, sp.sin) and base.args[0] in coordinates:
+            zeros.setdefault(base.args[0], []).extend((sp.S.Zero, sp.pi))
+        elif isinstance(base, sp.cos) and base.args[0] in coordinates:
+            zeros.setdefault(base.args[0], []).extend((-sp.pi / 2, sp.pi / 2))
+        elif least_value(factor, set(coordinates)) is None:
+            return None
+    if not zeros:
+        return None
+    return [(q, z) for q in coordinates if q in zeros for z in sorted(set(zeros[q]), key=float)]
 
 
 def factor_det(det: sp.Expr) -> sp.Expr:
