@@ -155,3 +155,19 @@ def test_crank_that_cannot_reach_its_default_angle_is_drawn_where_the_loop_close
     assert dict(builder.at)["theta2"] == pytest.approx(math.radians(60))
     assert _gap(builder, "B") < 1e-9
     assert "the loop does not close at the default theta2: it is drawn at 60 degrees" in builder.remarks
+
+
+def test_four_bar_flywheel_name_is_set_clear_of_its_rim() -> None:
+    """The flywheel turns on the crank's pin, and its name m_f has no room beside the pin: it is set
+    outside the disc, above it, not across its rim (where it was before)."""
+    builder = SystemBuilder(load_system(FOUR_BAR))
+    drawing = builder.build()
+    label = next(lb for lb in drawing.labels if lb.names == "body:crank/flywheel")
+    rim = next(p for p in drawing.primitives if getattr(p, "closed", False) and len(p.points) > 12)
+    cx = sum(x for x, _ in rim.points) / len(rim.points)
+    cy = sum(y for _, y in rim.points) / len(rim.points)
+    radius = max(math.dist(p, (cx, cy)) for p in rim.points)
+    box = label.box
+    nearest = (min(max(cx, box.x0), box.x1), min(max(cy, box.y0), box.y1))
+    assert math.dist(nearest, (cx, cy)) > radius, "the name's box reaches inside the flywheel"
+    assert box.y0 > cy - 0.1 * radius, "the name is set above the disc's centre"

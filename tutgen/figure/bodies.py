@@ -3,13 +3,15 @@ pins, and each part by its shape (point masses, rods, spheres, boxes, cylinders)
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from tutgen.figure.canvas import MASS, PIN, Canvas
 from tutgen.figure.geometry import convex_hull, points_box
 from tutgen.figure.pose import Vec
 from tutgen.figure.scene import Box, Fill, Point, Stroke
-from tutgen.figure.texlabel import expr_tex, word_tex
+from tutgen.figure.texlabel import expr_tex, label_size, word_tex
 from tutgen.model.system import GROUND, Body, Joint, JointKind, Shape
 
 
@@ -153,9 +155,32 @@ class BodyDrawing(Canvas):
                 self.cylinder_rims(b, part, pts)
             cx = sum(p[0] for p in hull) / len(hull)
             cy = sum(p[1] for p in hull) / len(hull)
+            rim = self.beside_pin(hull, (cx, cy), tex)
+            if rim is not None:  # a small disc on its pin (the four-bar's flywheel): the name outside it
+                self.label(name, tex, *rim)
+                continue
             # the name inside the outline, where a textbook writes it; it is placed before the labels
             # drawn later (loads, coordinates), which then keep off it
             self.label(name, tex, (cx, cy), (0.0, 0.0))
+
+    def beside_pin(self, hull: list[Point], centre: Point, tex: str) -> tuple[Point, Point] | None:
+        """Where a disc's name goes in the planar view when the disc turns on a pin at its centre and the
+        name has no room beside the pin (more than 45 % of the disc's smaller extent; the four-bar's
+        flywheel, whose name sat across its rim): an anchor on the rim, above the disc on the side away
+        from the skeleton, and that direction. ``None``: the name fits inside, or the shape is not such a
+        disc."""
+        if self.view == "oblique":
+            return None
+        box = points_box(hull)
+        room = min(box.x1 - box.x0, box.y1 - box.y0)
+        w, h = label_size(tex)
+        pins = [self.P(p) for p in self.pose.joint_at.values()]
+        if max(w, h) <= 0.45 * room or not any(math.dist(p, centre) < 0.1 * room for p in pins):
+            return None
+        ux, _ = self.outward(centre)
+        dx, dy = (-math.sqrt(0.5) if ux < 0 else math.sqrt(0.5)), math.sqrt(0.5)
+        reach = max(math.dist(p, centre) for p in hull)
+        return (centre[0] + dx * reach, centre[1] + dy * reach), (dx, dy)
 
     def back_to_front(self, bodies: list[Body]) -> list[tuple[Body, object]]:
         """The bodies' parts in drawing order: in the oblique view the farthest from the viewer first
