@@ -51,6 +51,16 @@ def _children_cpu() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
+def knows_expand(tree: Path) -> bool:
+    """Whether the tutgen in ``tree`` has ``solve --expand`` (a baseline from before it wrote every entry
+    anyway, and is run without the option)."""
+    env = {**os.environ, "PYTHONPATH": str(tree)}
+    run = subprocess.run(
+        [sys.executable, "-m", "tutgen", "solve", "--help"], cwd=tree, env=env, capture_output=True, text=True
+    )
+    return "--expand" in run.stdout
+
+
 def wall(cmd: list[str], cwd: Path, repeat: int, timeout: float) -> tuple[float | None, list[float]]:
     """Median wall time of ``repeat`` fresh runs (one when a run takes REPEAT_BELOW s), None on failure;
     the median CPU time of the same runs is appended to ``CPU``."""
@@ -168,7 +178,8 @@ def run(opts: argparse.Namespace, tmp: Path) -> int:
         cpu_now = CPU[-1] if now is not None else None
         line = f"  {name:<34} {fmt(now):>9} {fmt(cpu_now):>9}"
         if "before" in trees:
-            old = [a for a in cmd if a != "--expand"]  # an earlier tutgen wrote every entry without asking
+            # a tutgen from before --expand (307bb6a and earlier) wrote every entry without asking
+            old = cmd if knows_expand(trees["before"]) else [a for a in cmd if a != "--expand"]
             before, _ = wall(old, trees["before"], opts.repeat, opts.timeout)
             cpu_before = CPU[-1] if before is not None else None
             line += f" {fmt(cpu_before):>10} {ratio(cpu_before, cpu_now):>10}"
