@@ -247,3 +247,28 @@ def test_transcendental_equilibria_are_found_numerically_in_the_box() -> None:
     }
     assert verdicts[round(roots[1], 6)] == "unstable"
     assert verdicts[round(roots[0], 6)] == verdicts[round(roots[2], 6)] == "stable"
+
+
+def test_equilibrium_where_the_coordinates_are_singular_is_undetermined_not_a_crash() -> None:
+    """The heavy top at rest, θ = 0 and θ = π: H(q0) is singular there (the Euler angles' pole), so the
+    linear model has no state space and no eigenvalues; it was a NonInvertibleMatrixError (an internal
+    error on the command line). M, D and K are still given, and still match finite differences."""
+    import dataclasses
+
+    from tutgen.engine.analysis.linear import SINGULAR_MASS
+    from tutgen.model.system import Ask
+    from tutgen.render.jsonout import derivation_to_json
+    from tutgen.spec.validate import load_system
+
+    system = load_system(SPECS / "examples" / "g-heavy-symmetric-top.yaml")
+    d = derive(dataclasses.replace(system, ask=system.ask | {Ask.EQUILIBRIA, Ask.LINEARIZATION}))
+    models = d.analysis.classified
+    assert [dict(m.about)["theta"] for m in models] == [0, sp.pi]
+    for m in models:
+        assert sp.Matrix(m.mass).det() == 0
+        assert m.state_matrix.shape == (0, 0) and m.modes is None
+        assert (m.verdict, m.reason) == ("undetermined", SINGULAR_MASS)
+        assert m.check is not None and m.check.passed
+    results = derivation_to_json(d)["results"]
+    assert [e["stability"] for e in results["equilibria"]["solutions"]] == ["undetermined"] * 2
+    assert [(e["state_matrix"], "modes" in e) for e in results["linearization"]] == [([], False)] * 2

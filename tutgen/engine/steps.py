@@ -490,7 +490,7 @@ def analysis_equations(d: Derivation, kind: StepKind) -> tuple[Equation, ...]:
             Equation(_name(f"D_{i}"), m.damping),
             Equation(_name(f"K_{i}"), m.stiffness),
             *([Equation(_name(f"B_{i}"), m.input_matrix)] if m.inputs else []),
-            Equation(_name(f"A_{i}"), m.state_matrix),
+            *([Equation(_name(f"A_{i}"), m.state_matrix)] if m.state_matrix.shape != (0, 0) else []),
         ]
     return tuple(out)
 

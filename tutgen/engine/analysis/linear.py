@@ -28,7 +28,7 @@ from tutgen.engine.derivation import Check, Derivation
 from tutgen.engine.tidy import tidy
 from tutgen.limits import checkpoint
 
-__all__ = ["LinearModel", "Mode", "linearize", "stiffness_verdict"]
+__all__ = ["SINGULAR_MASS", "LinearModel", "Mode", "is_singular", "linearize", "stiffness_verdict"]
 
 #: a real part this small (relative to the largest eigenvalue) counts as zero
 ZERO = 1e-9
@@ -72,6 +72,21 @@ class LinearModel:
 #: the variable of the characteristic polynomial
 S = sp.Symbol("s")
 
+#: the reason given when M = H(q0) is singular at the equilibrium
+SINGULAR_MASS = (
+    "M is singular here (its determinant vanishes): the coordinates are singular at this configuration, as Euler "
+    "angles are at their pole, so the linear model cannot be solved for the accelerations and has no "
+    "state-space form; it does not decide stability (coordinates that are regular here would)"
+)
+
+
+def is_singular(mass: sp.Matrix) -> bool:
+    """Whether M = H(q0) is singular: its determinant is identically zero (the parameters symbolic)."""
+    if mass.shape[0] == 0:
+        return False
+    det = mass.det(method="berkowitz")
+    return bool(sp.expand(det) == 0 or tidy(sp.simplify(det)) == 0)
+
 
 def linearize(d: Derivation, about: tuple[tuple[str, sp.Expr], ...]) -> LinearModel:
     """The linear model of a derivation about ``about`` (every coordinate's value at the equilibrium)."""
@@ -96,18 +111,24 @@ def linearize(d: Derivation, about: tuple[tuple[str, sp.Expr], ...]) -> LinearMo
     damping = at_rest(e.jacobian(qd))
     stiffness = at_rest(e.jacobian(q))
     b = at_rest(-e.jacobian(list(inputs))) if inputs else sp.ImmutableMatrix(sp.zeros(n, 0))
-    minv = mass.inv() if n <= 3 else mass.inv(method="LU")
-    a = sp.Matrix(sp.BlockMatrix([[sp.zeros(n), sp.eye(n)], [-minv * stiffness, -minv * damping]]))
-    a = sp.ImmutableMatrix(a.applyfunc(lambda x: tidy(sp.simplify(x))))
-    bx = sp.ImmutableMatrix(sp.Matrix.vstack(sp.zeros(n, b.shape[1]), minv * b).applyfunc(tidy)) if inputs else b
+    singular = is_singular(mass)
+    if singular:  # no state space: M dq_ddot cannot be solved for dq_ddot (the top's H at its pole, theta = 0)
+        a = bx = sp.ImmutableMatrix(sp.zeros(0, 0))
+    else:
+        minv = mass.inv() if n <= 3 else mass.inv(method="LU")
+        a = sp.Matrix(sp.BlockMatrix([[sp.zeros(n), sp.eye(n)], [-minv * stiffness, -minv * damping]]))
+        a = sp.ImmutableMatrix(a.applyfunc(lambda x: tidy(sp.simplify(x))))
+        bx = sp.ImmutableMatrix(sp.Matrix.vstack(sp.zeros(n, b.shape[1]), minv * b).applyfunc(tidy)) if inputs else b
     characteristic = None
     if n <= 3:
         characteristic = tidy(sp.factor(sp.expand((mass * S**2 + damping * S + stiffness).det(method="berkowitz"))))
     numeric = not (a.free_symbols - set(d.values))
-    modes = _modes(d, a, n) if numeric else None
+    modes = _modes(d, a, n) if numeric and not singular else None
     conditions: tuple[sp.Expr, ...] = ()
     where: tuple[sp.Basic, ...] = ()
-    if modes is not None:
+    if singular:
+        verdict, reason = "undetermined", SINGULAR_MASS
+    elif modes is not None:
         verdict, reason = _eigen_verdict(d, modes, damping, stiffness)
     else:
         verdict, reason, conditions = stiffness_verdict(damping, stiffness)

@@ -60,11 +60,21 @@ def equilibria(c: SolutionContext) -> dict[str, Any] | None:
     sec["blocks"].append(display(f"G(q) - Q(q, 0) = {tex(num(eq.residual))} = 0"))
     coords = {q.name: q for q in s.coordinates}
     if eq.free:
+        names: list[Any] = []
+        for i, n in enumerate(eq.free):  # "ψ", "ψ and φ", "x, y and z"
+            if i:
+                names.append(text(" and " if i == len(eq.free) - 1 else ", "))
+            names.append(math(coords[n].latex))
+        one = len(eq.free) == 1
         sec["blocks"].append(
             para(
                 text("The equations do not contain "),
-                *[math(coords[n].latex) for n in eq.free],
-                text(": the system can rest at any value of it, so its equilibria are not isolated along it."),
+                *names,
+                text(
+                    ": the system can rest at any value of it, so its equilibria are not isolated along it."
+                    if one
+                    else ": the system can rest at any value of them, so its equilibria are not isolated along them."
+                ),
             )
         )
     if eq.method == "numeric":
@@ -171,11 +181,11 @@ def _polynomial(c: SolutionContext, p: sp.Expr) -> str:
     return out
 
 
-def _model(c: SolutionContext, m: LinearModel, single: bool) -> list[dict[str, Any]]:
+def _model(c: SolutionContext, m: LinearModel, number: int | None) -> list[dict[str, Any]]:
     tex, num = c.tex, c.num
     blocks: list[dict[str, Any]] = []
-    if not single:
-        blocks.append({"kind": "subheading", "text": "About " + ", ".join(f"{n} = {v}" for n, v in m.about)})
+    if number is not None:  # words only: a subheading is plain text (the maths follows in the paragraph)
+        blocks.append({"kind": "subheading", "text": f"Equilibrium {number}"})
     blocks.append(
         para(
             text("About "),
@@ -203,6 +213,9 @@ def _model(c: SolutionContext, m: LinearModel, single: bool) -> list[dict[str, A
             f" + {tex(num(m.stiffness))}{_column(c, 0)} = {rhs}"
         )
     )
+    if m.state_matrix.shape == (0, 0):  # M singular at this equilibrium: no state space; the verdict says why
+        blocks.append(para(*_verdict(c, m)))
+        return blocks
     blocks.append(
         para(
             text("With the state "),
@@ -245,6 +258,6 @@ def linearization(c: SolutionContext) -> dict[str, Any] | None:
         "Small motions about an equilibrium $q_0$ obey $M\\,\\delta\\ddot q + D\\,\\delta\\dot q + K\\,\\delta q "
         "= B\\,\\delta u$, the first-order expansion of the equations of motion at rest.",
     )
-    for m in a.linear:
-        sec["blocks"] += _model(c, m, len(a.linear) == 1)
+    for i, m in enumerate(a.linear, start=1):
+        sec["blocks"] += _model(c, m, None if len(a.linear) == 1 else i)
     return sec
