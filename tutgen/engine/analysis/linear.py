@@ -80,6 +80,17 @@ SINGULAR_MASS = (
 )
 
 
+#: an entry of A with more operations than this is brought to lowest terms and factored, not simplified:
+#: ``simplify`` of a symbolic 4-link arm's M^-1 K ran for minutes (every smaller entry is simplified as before)
+SIMPLIFY_OPS = 400
+
+
+def _simplest(x: sp.Expr) -> sp.Expr:
+    if sp.count_ops(x) > SIMPLIFY_OPS:
+        return tidy(sp.factor(sp.cancel(x)))
+    return tidy(sp.simplify(x))
+
+
 def is_singular(mass: sp.Matrix) -> bool:
     """Whether M = H(q0) is singular: its determinant is identically zero (the parameters symbolic)."""
     if mass.shape[0] == 0:
@@ -115,9 +126,9 @@ def linearize(d: Derivation, about: tuple[tuple[str, sp.Expr], ...]) -> LinearMo
     if singular:  # no state space: M dq_ddot cannot be solved for dq_ddot (the top's H at its pole, theta = 0)
         a = bx = sp.ImmutableMatrix(sp.zeros(0, 0))
     else:
-        minv = mass.inv() if n <= 3 else mass.inv(method="LU")
+        minv = mass.inv()  # DomainMatrix: each entry in lowest terms (LU left a 4-link arm nested fractions)
         a = sp.Matrix(sp.BlockMatrix([[sp.zeros(n), sp.eye(n)], [-minv * stiffness, -minv * damping]]))
-        a = sp.ImmutableMatrix(a.applyfunc(lambda x: tidy(sp.simplify(x))))
+        a = sp.ImmutableMatrix(a.applyfunc(_simplest))
         bx = sp.ImmutableMatrix(sp.Matrix.vstack(sp.zeros(n, b.shape[1]), minv * b).applyfunc(tidy)) if inputs else b
     characteristic = None
     if n <= 3:
