@@ -272,3 +272,34 @@ def test_equilibrium_where_the_coordinates_are_singular_is_undetermined_not_a_cr
     results = derivation_to_json(d)["results"]
     assert [e["stability"] for e in results["equilibria"]["solutions"]] == ["undetermined"] * 2
     assert [(e["state_matrix"], "modes" in e) for e in results["linearization"]] == [([], False)] * 2
+
+
+def test_equilibria_sympy_cannot_solve_are_said_so_not_denied() -> None:
+    """The cart's spring of length sqrt((d + x)^2) has no polynomial form: sympy's factor raised (an internal
+    error for `ask: [equilibria]`), and a symbolic spec has no numbers to search: tutgen says that, not
+    "no equilibrium" (the cart rests at x = L0 - d)."""
+    import dataclasses
+
+    from tutgen.engine.analysis.equilibria import UNSOLVED_REMARK
+    from tutgen.model.system import Ask
+    from tutgen.spec.validate import load_system
+
+    system = load_system(SPECS / "examples" / "b-cart-pendulum-sphere.yaml")
+    eq = derive(dataclasses.replace(system, ask=system.ask | {Ask.EQUILIBRIA})).analysis.equilibria
+    assert eq.solutions == () and eq.method == "none" and eq.remark == UNSOLVED_REMARK
+
+
+def test_finite_difference_check_takes_parameter_values_where_the_equilibrium_is_real() -> None:
+    """The bead in the rotating tube rests at phi = asin(k r0/(g m)), real only where k r0 <= g m: the
+    check's first test values made it complex (an internal error for `ask: [equilibria]`); the next set
+    that makes every equilibrium real is taken, and each model still matches central differences."""
+    import dataclasses
+
+    from tutgen.model.system import Ask
+    from tutgen.spec.validate import load_system
+
+    system = load_system(SPECS / "examples" / "e-bead-in-rotating-tube.yaml")
+    models = derive(dataclasses.replace(system, ask=system.ask | {Ask.EQUILIBRIA})).analysis.classified
+    assert any(str(v).startswith("asin") or "asin" in str(v) for m in models for _, v in m.about)
+    for m in models:
+        assert m.check is not None and m.check.passed and "equal central differences" in m.check.detail

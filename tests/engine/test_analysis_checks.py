@@ -169,6 +169,9 @@ def test_linear_model_matches_kane_for_every_spec_with_an_equilibrium(path: Path
             about = {name: float(sp.N(d.numeric(sp.sympify(v)).xreplace(subs))) for name, v in model.about}
         except TypeError:
             continue  # an equilibrium that does not exist at these values (acos of more than 1)
+        if model.state_matrix.shape == (0, 0):  # H(q0) singular (the top's pole): Kane's linearize fails too
+            assert model.verdict == "undetermined"
+            continue
         theirs = _kane_state_matrix(system, about, values)
         ours = _array(d, model.state_matrix, values)
         assert np.allclose(ours, theirs, rtol=1e-9, atol=1e-9), (model.about, ours, theirs)

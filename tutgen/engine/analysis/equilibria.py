@@ -109,6 +109,14 @@ def _canonical(d: Derivation, name: str, v: sp.Expr) -> sp.Expr:
     return v
 
 
+#: what :func:`roots` says when it could not solve (reported as the method "none", with the remark)
+UNSOLVED = "unsolved"
+UNSOLVED_REMARK = (
+    "sympy finds no closed form for these equations, and the parameters have no values to search for the "
+    "roots numerically; give the parameters values, or name an equilibrium with `about`"
+)
+
+
 def find_equilibria(d: Derivation) -> Equilibria:
     """Every equilibrium of a derivation (see the module's docstring)."""
     checkpoint("equilibria")
@@ -125,6 +133,8 @@ def find_equilibria(d: Derivation) -> Equilibria:
             solutions = (tuple((c.name, sp.Integer(0)) for c in coords),)
         return Equilibria(residual, solutions, free, "symbolic" if not equations else "none", remark)
     out, method = roots(d, residual, present, coords)
+    if method == UNSOLVED:
+        return Equilibria(residual, (), free, "none", UNSOLVED_REMARK)
     if not out:
         return Equilibria(residual, (), free, "none", "no equilibrium was found")
     return Equilibria(residual, tuple(out), free, method)
@@ -136,7 +146,11 @@ def _solve_one(equation: sp.Expr, x: sp.Symbol) -> list[sp.Expr] | None:
     returns half-angle forms and drops roots such as pi for these); other factors go to sympy."""
     c, s = sp.Dummy("c"), sp.Dummy("s")
     roots: list[sp.Expr] = []
-    for factor, _ in sp.factor_list(sp.factor(equation))[1]:
+    try:
+        factors = sp.factor_list(sp.factor(equation))[1]
+    except sp.PolynomialError:  # not a polynomial in its atoms (a spring's sqrt((d + x)^2)/|d + x|): numeric roots
+        return None
+    for factor, _ in factors:
         if not factor.has(x):
             continue
         if factor.has(sp.tan):
@@ -249,6 +263,8 @@ def roots(
     if found is None and not (residual.free_symbols - {c.q for c in d.system.coordinates} - set(d.values)):
         found = _solve_numeric(d, residual, present)
         method = "numeric"
+    if found is None:  # sympy has no closed form, and the parameters have no values for a numeric search
+        return [], UNSOLVED
     if not found:
         return [], "none"
     out: list[tuple[tuple[str, sp.Expr], ...]] = []

@@ -485,6 +485,7 @@ def steady_motion(d: Derivation) -> SteadyMotion:
         # sin(2 theta) back to 2 sin(theta) cos(theta): each factor then in cos or sin alone (acos roots,
         # every family), not sympy's half-angle atan forms
         solutions, method = roots(d, sp.ImmutableMatrix(residual.applyfunc(sp.expand_trig)), present)
+        method = "none" if method == "unsolved" else method  # the JSON's methods: symbolic, numeric, none
         if not solutions:
             remark = "no steady state was found at these rates"
     elif any(e != 0 for e in residual):
