@@ -27,9 +27,28 @@ def test_every_package_of_the_tree_is_installed() -> None:
 def test_every_package_data_pattern_matches_a_file() -> None:
     config = _pyproject()["tool"]["setuptools"]
     dirs = {"tutgen": ROOT / "tutgen", **{k: ROOT / v for k, v in config["package-dir"].items()}}
+
+    def folder(package: str) -> Any:
+        # as setuptools maps it: the longest package-dir prefix, then the rest of the name as folders
+        base = max((k for k in dirs if package == k or package.startswith(k + ".")), key=len)
+        return dirs[base].joinpath(*package[len(base) :].split(".")[1:])
+
     for package, patterns in config["package-data"].items():
+        assert package in config["packages"], f"{package}: package data of a package that is not listed"
         for pattern in patterns:
-            assert list(dirs[package].glob(pattern)), f"{package}: {pattern} matches no file"
+            assert list(folder(package).glob(pattern)), f"{package}: {pattern} matches no file"
+
+
+def test_every_template_folder_is_a_listed_package() -> None:
+    """setuptools warns that a folder of templates not in the packages list "would be ignored" (a
+    namespace package it may stop installing): each one is listed, so the templates keep coming along."""
+    listed = set(_pyproject()["tool"]["setuptools"]["packages"])
+    folders = {
+        ".".join(("tutgen", "templates", *d.relative_to(ROOT / "templates").parts))
+        for d in (ROOT / "templates").rglob("*")
+        if d.is_dir() and "__pycache__" not in d.parts and any(d.glob("*.j2"))
+    }
+    assert folders and folders - listed == set(), "add these to [tool.setuptools] packages in pyproject.toml"
 
 
 #: the import names of the runtime dependencies in pyproject.toml (pyyaml is ``yaml``; pydantic brings
