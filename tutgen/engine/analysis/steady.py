@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import sympy as sp
 from sympy.core.sorting import default_sort_key
 
-from tutgen.engine.analysis.equilibria import existence, input_values, roots
+from tutgen.engine.analysis.equilibria import UNSOLVED, existence, input_values, roots
 from tutgen.engine.analysis.linear import sign_condition, stiffness_verdict
 from tutgen.engine.derivation import Check, Derivation
 from tutgen.engine.tidy import tidy
@@ -485,7 +485,7 @@ def steady_motion(d: Derivation) -> SteadyMotion:
         # sin(2 theta) back to 2 sin(theta) cos(theta): each factor then in cos or sin alone (acos roots,
         # every family), not sympy's half-angle atan forms
         solutions, method = roots(d, sp.ImmutableMatrix(residual.applyfunc(sp.expand_trig)), present)
-        method = "none" if method == "unsolved" else method  # the JSON's methods: symbolic, numeric, none
+        method = "none" if method == UNSOLVED else method  # the JSON's methods: symbolic, numeric, none
         if not solutions:
             remark = "no steady state was found at these rates"
     elif any(e != 0 for e in residual):

@@ -211,12 +211,13 @@ def singular_sentence(det: sp.Expr, coordinates: list[sp.Symbol], tex: Any) -> s
     positive = {p: sp.Dummy(p.name, positive=True) for p in params}
     back = {v: k for k, v in positive.items()}
     assumed = " (for positive values of the parameters)" if params else ""
-    least = least_value(det.subs(positive), set(qs))
+    signed = det.subs(positive)  # the parameters positive, as every test below takes them
+    least = least_value(signed, set(qs))
     if least is not None:
         return _never_zero(least.subs(back), qs, assumed, tex)
-    if positive_over_square(det.subs(positive), set(qs)):
+    if positive_over_square(signed, set(qs)):
         return _never_zero(None, qs, assumed, tex)
-    zeros = factor_zeros(det.subs(positive), qs)
+    zeros = factor_zeros(signed, qs)
     if zeros is not None:
         where = ",\\ ".join(f"{tex(q)} = {tex(z.subs(back))}" for q, z in zeros)
         others = " (whatever the other coordinates)" if len(qs) > 1 else ""
@@ -224,14 +225,14 @@ def singular_sentence(det: sp.Expr, coordinates: list[sp.Symbol], tex: Any) -> s
     if len(qs) == 1:
         q = qs[0]
         try:
-            found = sp.solveset(det.subs(positive), q, sp.S.Reals)
+            found = sp.solveset(signed, q, sp.S.Reals)
         except Exception:  # sympy cannot decide (it raises many kinds, mpmath's NoConvergence too): unknown
             found = None
         if found is sp.S.EmptySet:
             try:  # its least value, the reason it is never zero (2 + cos θ_2 ≥ 1 since cos ≥ -1)
                 from sympy.calculus.util import minimum
 
-                least = minimum(det.subs(positive), q, sp.S.Reals)
+                least = minimum(signed, q, sp.S.Reals)
             except Exception:  # no closed form, or no convergence (mpmath): the zeros alone decide
                 least = None
             return _never_zero(least.subs(back) if least is not None and least.is_positive else None, qs, assumed, tex)
@@ -275,10 +276,13 @@ def least_value(det: sp.Expr, coordinates: set[sp.Symbol]) -> sp.Expr | None:
     where every even power can vanish together, as it can in one coordinate). ``None`` when no form is
     such a sum; the parameters in ``det`` must already be positive symbols."""
     x = sp.Wild("x")
-    forms = (det, det.replace(sp.cos(x) ** 2, 1 - sp.sin(x) ** 2), det.replace(sp.sin(x) ** 2, 1 - sp.cos(x) ** 2))
+    forms = [
+        sp.expand(f)
+        for f in (det, det.replace(sp.cos(x) ** 2, 1 - sp.sin(x) ** 2), det.replace(sp.sin(x) ** 2, 1 - sp.cos(x) ** 2))
+    ]
     for form in forms:
         free: list[sp.Expr] = []
-        for term in sp.Add.make_args(sp.expand(form)):
+        for term in sp.Add.make_args(form):
             coefficient, varying = term.as_independent(*coordinates, as_Add=False)
             if not coefficient.is_positive:
                 break
@@ -290,7 +294,7 @@ def least_value(det: sp.Expr, coordinates: set[sp.Symbol]) -> sp.Expr | None:
             if free:
                 return sp.Add(*free)
     for form in forms:
-        least = _quadratic_least(sp.expand(form), coordinates)
+        least = _quadratic_least(form, coordinates)
         if least is not None:
             return least
     return None
@@ -307,17 +311,24 @@ def positive_over_square(det: sp.Expr, coordinates: set[sp.Symbol]) -> bool:
     if len(squares) != 1:
         return False
     s = sp.Dummy("s")
-    line = form.subs(squares.pop() ** 2, s)
-    if line.free_symbols & coordinates:
+    line = _coefficients(form.subs(squares.pop() ** 2, s), s, 1, coordinates)
+    if line is None:
         return False
-    try:
-        poly = sp.Poly(line, s)
-    except sp.PolynomialError:
-        return False
-    if poly.degree() != 1:
-        return False
-    b, a = poly.all_coeffs()
+    b, a = line
     return bool(a.is_positive and sp.factor(a + b).is_positive)
+
+
+def _coefficients(expr: sp.Expr, u: sp.Basic, degree: int, coordinates: set[sp.Symbol]) -> list[sp.Expr] | None:
+    """The coefficients of ``expr`` as a polynomial of exactly ``degree`` in ``u``, highest first, when they
+    are free of the coordinates; ``None`` otherwise."""
+    try:
+        poly = sp.Poly(expr, u)
+    except sp.PolynomialError:
+        return None
+    coefficients = poly.all_coeffs()
+    if poly.degree() != degree or any(c.free_symbols & coordinates for c in coefficients):
+        return None
+    return coefficients
 
 
 def _quadratic_least(det: sp.Expr, coordinates: set[sp.Symbol]) -> sp.Expr | None:
@@ -328,14 +339,10 @@ def _quadratic_least(det: sp.Expr, coordinates: set[sp.Symbol]) -> sp.Expr | Non
     generators = {a for a in varying if not any(a != b and b.has(a) for b in varying)}
     if len(generators) != 1:
         return None
-    u = generators.pop()
-    try:
-        poly = sp.Poly(det, u)
-    except sp.PolynomialError:
+    quadratic = _coefficients(det, generators.pop(), 2, coordinates)
+    if quadratic is None:
         return None
-    if poly.degree() != 2 or any(c.free_symbols & coordinates for c in poly.all_coeffs()):
-        return None
-    a, b, c = poly.all_coeffs()
+    a, b, c = quadratic
     if not a.is_positive or not sp.factor(b**2 - 4 * a * c).is_negative:
         return None
     least = sp.factor(c - b**2 / (4 * a))
