@@ -107,9 +107,38 @@ def derivation_to_json(d: Derivation, expand: bool = True) -> dict[str, Any]:
     ``results.expanded: false`` instead of the entries written out (:data:`EXPANDED_KEYS`), which are
     then never converted to sympy nor printed; every other derivation is the same either way."""
     system = d.system
+    written = expand or not is_program_only(d)  # the entries written out (EXPANDED_KEYS)
+    out = {
+        "tutgen": __version__,
+        "format": JSON_FORMAT_VERSION,
+        "title": system.title,
+        "coordinates": [c.name for c in system.coordinates],
+        "parameters": {p.name: (value(p.value) if p.value is not None else None) for p in system.parameters},
+        "results": _results(d, written),
+        "steps": steps_json(d, written),  # additive: the worked solution's steps, docs/json-output.md#steps
+        "figure": {**figure_json(system), "free_bodies": _free_bodies(d)},  # additive, docs/json-output.md
+        "remarks": list(d.remarks),
+        "checks": [{"name": c.name, "passed": c.passed, "detail": c.detail} for c in d.checks],
+    }
+    if d.simulation is not None:  # additive, `ask: [simulation]` only: docs/json-output.md#simulation
+        from tutgen.render.sections.simulation import simulation_json
+
+        out["simulation"] = simulation_json(d.simulation)
+    return out
+
+
+def results_to_json(d: Derivation, expand: bool = True) -> dict[str, Any]:
+    """``results`` of :func:`derivation_to_json` alone, without the document's steps, figure and free-body
+    diagrams, which no answer key holds (a sheet's keys: most of the time of the whole document)."""
+    return _results(d, expand or not is_program_only(d))
+
+
+def _results(d: Derivation, written: bool) -> dict[str, Any]:
+    """The document's ``results``; ``written``: whether the entries written out (:data:`EXPANDED_KEYS`)
+    are given."""
+    system = d.system
     num = d.numeric
     ask = system.ask
-    written = expand or not is_program_only(d)  # the entries written out (EXPANDED_KEYS)
     program_only = not written
     results: dict[str, Any] = {}
 
@@ -216,24 +245,7 @@ def derivation_to_json(d: Derivation, expand: bool = True) -> dict[str, Any]:
             results["constraints"] = constraints_json(d)
         if d.prescribed is not None:  # additive, issue 18.4: docs/json-output.md#prescribed
             results["prescribed"] = prescribed_results(d)
-
-    out = {
-        "tutgen": __version__,
-        "format": JSON_FORMAT_VERSION,
-        "title": system.title,
-        "coordinates": [c.name for c in system.coordinates],
-        "parameters": {p.name: (value(p.value) if p.value is not None else None) for p in system.parameters},
-        "results": results,
-        "steps": steps_json(d, written),  # additive: the worked solution's steps, docs/json-output.md#steps
-        "figure": {**figure_json(system), "free_bodies": _free_bodies(d)},  # additive, docs/json-output.md
-        "remarks": list(d.remarks),
-        "checks": [{"name": c.name, "passed": c.passed, "detail": c.detail} for c in d.checks],
-    }
-    if d.simulation is not None:  # additive, `ask: [simulation]` only: docs/json-output.md#simulation
-        from tutgen.render.sections.simulation import simulation_json
-
-        out["simulation"] = simulation_json(d.simulation)
-    return out
+    return results
 
 
 def _free_bodies(d: Derivation) -> list[dict[str, Any]]:

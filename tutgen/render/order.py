@@ -17,10 +17,23 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import IntEnum
+from functools import lru_cache
 
 import sympy as sp
 
 from tutgen.model.system import System
+
+#: how many distinct expressions the memoised functions below remember: a worked solution asks for the
+#: same ones again and again (T in the energies, in L and in Lagrange's terms; H's entries when read off,
+#: in H and in its determinant), a sheet's worker for thousands of its variants' expressions (issue 17)
+MEMO_SIZE = 1 << 14
+
+
+@lru_cache(maxsize=MEMO_SIZE)
+def ops(expr: sp.Basic) -> int:
+    """``sympy.count_ops(expr)``, remembered (an expression is immutable, and sympy compares and hashes it
+    by its structure: ``x + 1.0`` and ``x + 1`` are different keys)."""
+    return int(sp.count_ops(expr))
 
 
 class Role(IntEnum):
@@ -99,7 +112,7 @@ def _plus(terms: list[Term]) -> sp.Expr:
     return parts[0] if len(parts) == 1 else OrderedSum(*parts, evaluate=False)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # compared and hashed by identity: the key of the memoised arrangements
 class _Levels:
     """What a term is gathered over, level by level: its rates and accelerations (0), its coordinates (1),
     its data other than masses and inertias (2: lengths, g); what is left are masses, inertias, numbers."""
@@ -139,7 +152,7 @@ class _Levels:
             if part == 1:
                 return (0,)
             first = min((i for i, s in enumerate(self.coordinates) if s in free), default=0)
-            return (1, first, sp.count_ops(part), sp.default_sort_key(part))
+            return (1, first, ops(part), sp.default_sort_key(part))
         return (1,) if part == 1 else (0, sp.default_sort_key(part))
 
 
@@ -229,25 +242,33 @@ def arranged_terms(expr: sp.Expr, levels: _Levels) -> list[Term] | None:
     coordinates' functions (a trigonometric factor, a spring's stretch), then over the data (``(m_1 +
     m_2) a_1^2``). ``None`` when the expression is not a sum worth ordering or the arranged terms would
     not keep its value."""
+    found = _arranged_terms(expr, levels)
+    return list(found) if found is not None else None
+
+
+@lru_cache(maxsize=MEMO_SIZE)
+def _arranged_terms(expr: sp.Expr, levels: _Levels) -> tuple[Term, ...] | None:
+    """:func:`arranged_terms`, remembered per expression and printer (``levels``)."""
     expanded = sp.expand(expr)
     if not isinstance(expanded, sp.Add):
         return None
     ordered = _arrange(list(sp.Add.make_args(expanded)), 0, levels)
     if sp.expand(sp.Add(*(sign * body for sign, body in ordered)) - expr) != 0:  # the printed form keeps the value
         return None
-    return ordered
+    return tuple(ordered)
 
 
+@lru_cache(maxsize=MEMO_SIZE)
 def arranged(expr: sp.Expr, levels: _Levels) -> sp.Expr:
     """``expr`` as a sum that prints in a teacher's order, or ``expr`` itself when that is much longer:
     an arranged form that has a quarter more operations than the model's (``m_2 (l_1 + l_2 \\cos q)^2`` expanded)
     is not used."""
     found = arranged_terms(expr, levels)
     result = _plus(found) if found else expr
-    if found and sp.count_ops(result) > 1.25 * sp.count_ops(expr) + 2:
+    if found and ops(result) > 1.25 * ops(expr) + 2:
         result = expr
     squares = _perfect_squares(expr, levels)
-    if squares is not None and sp.count_ops(squares) < sp.count_ops(result):
+    if squares is not None and ops(squares) < ops(result):
         return squares
     return result
 

@@ -236,21 +236,34 @@ class TexPrinter:
         self.kinematic_symbols = set(self.coordinate_index)
         #: the spec's significant figures for decimals (None in the spec: the default, 4)
         self.figures = getattr(system, "significant_figures", None) or SIGNIFICANT_FIGURES
+        #: what this printer has printed (an expression is immutable; a worked solution prints T, H's
+        #: entries and the equations' sides several times over)
+        self._printed: dict[tuple[str, sp.Basic], str] = {}
 
     def with_names(self, names: dict[sp.Symbol, str]) -> TexPrinter:
         """The same printer knowing more names (a statement's free symbols, ``T``, ``q_dot``)."""
         other = TexPrinter.__new__(TexPrinter)
         other.__dict__.update(self.__dict__)
         other.names = {**names, **self.names}
+        other._printed = {}  # other names, other text
         return other
 
     def __call__(self, expr: object) -> str:
+        if not isinstance(expr, sp.Basic):  # a float, or a mutable matrix: not remembered
+            return self._print(expr)
+        key = ("", expr)
+        text = self._printed.get(key)
+        if text is None:
+            text = self._printed[key] = self._print(expr)
+        return text
+
+    def _print(self, expr: object) -> str:
         if isinstance(expr, sp.MatrixBase):
             rows = [" & ".join(self(e) for e in expr.row(i)) for i in range(expr.rows)]
             return r"\begin{bmatrix}" + r" \\ ".join(rows) + r"\end{bmatrix}"
         if isinstance(expr, float):
             expr = sp.Float(expr)
-        if _is_sum(expr) and sp.count_ops(expr) <= ORDER_BUDGET:
+        if _is_sum(expr) and order.ops(expr) <= ORDER_BUDGET:
             if isinstance(expr, sp.Add):
                 expr = order.arranged(expr, self.levels)
             else:  # a product keeps its factoring (m_2 l_2^2 (…)); its brackets are arranged, minus outside
@@ -273,6 +286,15 @@ class TexPrinter:
     def ordered(self, expr: sp.Expr) -> str:
         """An equation of motion's side as a teacher writes it (tutgen.render.order.equation_terms):
         accelerations in coordinate order, velocity products, the rest; each bracket with a positive lead."""
+        if not isinstance(expr, sp.Basic):
+            return self._ordered(expr)
+        key = ("ordered", expr)
+        text = self._printed.get(key)
+        if text is None:
+            text = self._printed[key] = self._ordered(expr)
+        return text
+
+    def _ordered(self, expr: sp.Expr) -> str:
         found = order.arranged_terms(expr, self.levels) if isinstance(expr, sp.Expr) else None
         if not found:
             return self(expr)
@@ -290,7 +312,7 @@ class TexPrinter:
         With the result's ``dimension``, a numeric result carries its SI unit (:meth:`unit`)."""
         head = f"{lhs} = " if lhs else ""
         tail = f" = {rhs}" if rhs else ""
-        small = isinstance(expr, sp.Expr) and sp.count_ops(expr) <= ORDER_BUDGET
+        small = isinstance(expr, sp.Expr) and order.ops(expr) <= ORDER_BUDGET
         unit = self.unit(expr, dimension) if dimension is not None and not rhs else ""
         return f"{head}{self.ordered(expr) if small else self(expr)}{unit}{tail}"
 

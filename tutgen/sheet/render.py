@@ -138,10 +138,8 @@ def answer_key(results: str | Derivation, spec_name: str, student: str) -> str:
     """The answer key of one problem of one variant, in the answers format of ``tutgen check``
     (docs/check.md): every result of ``tutgen solve --format json``, with this variant's numbers.
     ``results``: the variant's derivation, or the text :func:`key_results` made of it."""
-    import yaml
-
     head = {"spec": spec_name, "student": student}
-    text = yaml.safe_dump(head, sort_keys=False, allow_unicode=True, width=100)
+    text = dump_yaml(head, flow=False)
     text += results if isinstance(results, str) else key_results(results)
     return f"# The answer key of {spec_name}: check it with `tutgen check {spec_name} THIS_FILE`.\n" + text
 
@@ -149,24 +147,21 @@ def answer_key(results: str | Derivation, spec_name: str, student: str) -> str:
 def key_results(derivation: Derivation, results: dict[str, Any] | None = None) -> str:
     """The results part of an answer key (YAML); ``results``: :func:`results_json` of the derivation,
     when the caller has it already."""
-    import yaml
-
     results = results if results is not None else results_json(derivation)
     ne = results.get("newton_euler")
     if isinstance(ne, dict) and "planar" in ne:  # the working of the solution (free bodies in words), not an answer
         results = {**results, "newton_euler": {k: v for k, v in ne.items() if k != "planar"}}
-    return yaml.safe_dump(results, sort_keys=False, allow_unicode=True, width=100, default_flow_style=None)
+    return dump_yaml(results)
 
 
 def results_json(derivation: Derivation) -> dict[str, Any]:
     """``results`` of ``tutgen solve --format json`` (tutgen/render/jsonout.py), without building the
-    document's ``steps``, which no key holds and no result reads: the steps' values and LaTeX were about
-    three quarters of the JSON's time on the tutorial."""
-    import dataclasses
+    document's ``steps``, figure and free-body diagrams, which no key holds and no result reads: the steps'
+    values and LaTeX were about three quarters of the JSON's time on the tutorial, the figure and the
+    diagrams most of the rest."""
+    from tutgen.render.jsonout import results_to_json
 
-    from tutgen.render.jsonout import derivation_to_json
-
-    return dict(derivation_to_json(dataclasses.replace(derivation, steps=()))["results"])
+    return results_to_json(derivation)
 
 
 def marking_key(
@@ -176,8 +171,6 @@ def marking_key(
     sheet's or the problem's ``marking:``, else the spec's; the items asked (when none is stated, those
     derived from the spec's ``ask``, so that the key says what is graded), and the significant figures
     this variant's solution prints decimals with, so that a decimal copied from it is right."""
-    import yaml
-
     from tutgen.check.verdicts import PRINTED_FIGURES, derived_ask
     from tutgen.spec.builders.marking import marking_data
 
@@ -194,4 +187,18 @@ def marking_key(
         f"# The marking key of {spec_name} ({note}): mark a student's answers with\n"
         f"# `tutgen check {spec_name} ANSWERS --key THIS_FILE`.\n"
     )
-    return head + yaml.safe_dump(data, sort_keys=False, allow_unicode=True, width=100, default_flow_style=None)
+    return head + dump_yaml(data)
+
+
+def dump_yaml(data: Any, flow: bool = True) -> str:
+    """``data`` as the keys' YAML: keys in their order, Unicode as it is, lines of at most 100 characters,
+    and (``flow``) short lists and mappings in flow style. PyYAML's libyaml emitter writes the same text
+    as its Python emitter about eight times faster (tests/sheet/test_keys.py compares the two on every
+    key of the tutorial sheet); the Python one is the fallback where PyYAML was built without libyaml."""
+    import yaml
+
+    dumper = getattr(yaml, "CSafeDumper", yaml.SafeDumper)
+    options: dict[str, Any] = {"sort_keys": False, "allow_unicode": True, "width": 100}
+    if flow:
+        options["default_flow_style"] = None
+    return yaml.dump(data, Dumper=dumper, **options)

@@ -11,6 +11,7 @@ import hashlib
 import json
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any
 
 import sympy as sp
@@ -181,10 +182,17 @@ def concrete_entries(text_entries: Mapping[str, Any], system: System, values: Ma
 
 def concrete_spec(problem_text: str, path: str, system: System, values: Mapping[str, sp.Expr]) -> str:
     """The concrete spec of a variant: the problem's spec text with every varying parameter fixed."""
-    from tutgen.spec.loader import load_yaml_text
-
     if all(p.choices is None for p in system.parameters):
         return problem_text  # nothing varies: the spec as written
-    data, smap = load_yaml_text(problem_text, path)
+    data, smap = _parsed(problem_text, path)
     entries = parameter_entries(data) or {}
     return replace_parameters(problem_text, data, smap, concrete_entries(entries, system, values))
+
+
+@lru_cache(maxsize=64)
+def _parsed(problem_text: str, path: str) -> tuple[dict[str, Any], SourceMap]:
+    """The problem's spec, read once per process for all its variants (nothing here changes what it
+    returns: :func:`replace_parameters` and :func:`parameter_entries` copy what they change)."""
+    from tutgen.spec.loader import load_yaml_text
+
+    return load_yaml_text(problem_text, path)
