@@ -66,6 +66,7 @@ class UnitResult:
     fresh: bool = False  # derived afresh, not by substitution (variant_derivation)
     derive_seconds: float = 0.0
     render_seconds: float = 0.0
+    figure: tuple[str, str] | None = None  # a Markdown sheet's figure: (file name, SVG), drawn with the unit
 
 
 @dataclass(frozen=True)
@@ -214,8 +215,9 @@ def build_unit(shared: Shared, unit: Unit) -> UnitResult:
         results = key_results(d, document)
         marks = marking_key(d, base.marking, f"specs/{base.key}.yaml", document)
     extra = problem_assets(base.key, base.number, d, shared.formats)
+    figure = _figure_svg(base.key, d.system) if "md" in shared.formats else None
     total = time.perf_counter() - start
-    return UnitResult(view, d.system, extra, results, marks, concrete, fresh, t_derive, total - t_derive)
+    return UnitResult(view, d.system, extra, results, marks, concrete, fresh, t_derive, total - t_derive, figure=figure)
 
 
 def build_job(shared: Shared, job: Job) -> JobResult:
@@ -257,7 +259,7 @@ def build_job(shared: Shared, job: Job) -> JobResult:
         for base, u in zip(shared.problems, units, strict=True):
             lms.append(_lms(base, u.view, u.results, u.marks, u.system, "nominal", ""))
     views = [a.view(v, md=False) for a, v in zip(assets, views, strict=True)]  # the plots' names on the sheet
-    figures = _figures(shared, systems) if "md" in shared.formats else {}
+    figures = {b.key: u.figure for b, u in zip(shared.problems, units, strict=True) if u.figure is not None}
     views = shared_intros(views)  # a section's conventions printed once per sheet (tutgen/sheet/compact.py)
     context = {**header, "problems": views}
     for kind in ("questions", "solutions"):
@@ -307,17 +309,14 @@ def has_figure(system: Any) -> bool:
     return system.figure is None or system.figure.generated
 
 
-def _figures(shared: Shared, systems: Sequence[Any]) -> dict[str, tuple[str, str]]:
-    """Problem key -> (file name, SVG) of the figures a Markdown sheet shows beside its problems."""
+def _figure_svg(key: str, system: Any) -> tuple[str, str] | None:
+    """(file name, SVG) of the figure a Markdown sheet shows beside problem ``key``, or None. Drawn where
+    the unit is built, with the drawing its worked solution's view uses (one drawing per unit)."""
     from tutgen.figure.view import svg_file
     from tutgen.sheet.render import as_set
 
-    out: dict[str, tuple[str, str]] = {}
-    for base, system in zip(shared.problems, systems, strict=True):
-        made = svg_file(as_set(system)) if has_figure(system) else None
-        if made is not None:
-            out[base.key] = (figure_name(base.key), made[1])
-    return out
+    made = svg_file(as_set(system)) if has_figure(system) else None
+    return (figure_name(key), made[1]) if made is not None else None
 
 
 def _md_figure(view: dict[str, Any], figure: tuple[str, str] | None) -> dict[str, Any]:

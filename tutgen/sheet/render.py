@@ -90,10 +90,24 @@ def problem_view(number: int, derivation: Derivation, solution: bool) -> dict[st
 
 def as_set(system: Any) -> Any:
     """The system as the question sheet names it: its ``question_title`` as its title, for what both sheets
-    share (the figure's caption and its SVG's title), so that neither gives the answer away."""
+    share (the figure's caption and its SVG's title), so that neither gives the answer away. The same
+    object for the same system (the last few remembered), so that its figure is drawn once
+    (tutgen.figure.build.draw_system remembers a drawing per system object)."""
     import dataclasses
 
-    return dataclasses.replace(system, title=system.question_title) if system.question_title else system
+    if not system.question_title:
+        return system
+    hit = _AS_SET.get(id(system))
+    if hit is not None and hit[0] is system:
+        return hit[1]
+    shown = dataclasses.replace(system, title=system.question_title)
+    while len(_AS_SET) >= 64:
+        _AS_SET.pop(next(iter(_AS_SET)))
+    _AS_SET[id(system)] = (system, shown)
+    return shown
+
+
+_AS_SET: dict[int, tuple[Any, Any]] = {}
 
 
 def _figure(system: Any) -> dict[str, Any]:
