@@ -5,7 +5,7 @@ from __future__ import annotations
 import sympy as sp
 
 from tests.conftest import SPECS, solved
-from tutgen.render.printer import TexPrinter
+from tutgen.render.printer import TexPrinter, forget
 from tutgen.render.views import solution_view
 
 P03 = SPECS / "tutorial-1" / "p03-cart-pendulum.yaml"
@@ -113,6 +113,7 @@ def test_a_square_free_coefficient_is_not_factored(monkeypatch) -> None:
         return real(expr, *args, **kwargs)
 
     monkeypatch.setattr(order.sp, "factor", counting)
+    forget()  # what an earlier test printed is remembered (tutgen.render.printer._PRINTED)
     system, d, _ = solved(str(P08))
     tex = TexPrinter(system)
     assert r"m_2 \left(l_1 + l_2 \cos\theta_2\right)^{2}" in tex(d.mass_matrix[0, 0])

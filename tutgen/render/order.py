@@ -29,6 +29,12 @@ from tutgen.model.system import System
 MEMO_SIZE = 1 << 14
 
 
+def forget() -> None:
+    """Empty the memoised functions' tables (tests that count the work done)."""
+    for memoised in (ops, arranged, _arranged_terms):
+        memoised.cache_clear()
+
+
 @lru_cache(maxsize=MEMO_SIZE)
 def ops(expr: sp.Basic) -> int:
     """``sympy.count_ops(expr)``, remembered (an expression is immutable, and sympy compares and hashes it

@@ -216,6 +216,35 @@ def tidy_functions(tex: str) -> str:
     return "".join(out)
 
 
+#: What printers have printed, per settings (names, roles, coordinates, significant figures): the text of an
+#: expression depends on these and on the expression alone, which is immutable and compared by its
+#: structure (``x + 1.0`` and ``x + 1`` are different keys). A worked solution prints T, H's entries and
+#: the equations' sides several times over, and a sheet's variants of a problem share the expressions
+#: that hold only the parameters they share (issue 17). Each table is emptied when it reaches
+#: :data:`PRINTED_MAX` entries.
+_PRINTED: dict[tuple[object, ...], dict[tuple[str, sp.Basic], str]] = {}
+_LEVELS: dict[tuple[object, ...], Any] = {}  # one order._Levels per roles and coordinates (its memo's key)
+PRINTED_MAX = 20_000
+
+
+def _printed(names: frozenset[tuple[sp.Symbol, str]], settings: tuple[object, ...]) -> dict[tuple[str, sp.Basic], str]:
+    table = _PRINTED.setdefault((names, settings), {})
+    if len(table) >= PRINTED_MAX:
+        table.clear()
+    if len(_PRINTED) > 256:  # a long-lived process (the tests) sees many systems
+        _PRINTED.clear()
+        _LEVELS.clear()
+        table = _PRINTED.setdefault((names, settings), {})
+    return table
+
+
+def forget() -> None:
+    """Empty every table of printed texts and of arranged terms (tests that count the work of printing)."""
+    _PRINTED.clear()
+    _LEVELS.clear()
+    order.forget()
+
+
 class TexPrinter:
     """sympy's LaTeX printer with the spec's symbol names: theta1_dot -> \\dot{\\theta}_{1}."""
 
@@ -230,23 +259,32 @@ class TexPrinter:
         self.names = names
         self.system = system
         self.roles = order.symbol_roles(system)
-        self.levels = order.levels_of(system)
         #: a rate's or an acceleration's coordinate index, so ẋ comes before θ̇ when x is the first coordinate
         self.coordinate_index = {s: i for i, c in enumerate(system.coordinates) for s in (c.q, c.qd, c.qdd)}
         self.kinematic_symbols = set(self.coordinate_index)
         #: the spec's significant figures for decimals (None in the spec: the default, 4)
         self.figures = getattr(system, "significant_figures", None) or SIGNIFICANT_FIGURES
-        #: what this printer has printed (an expression is immutable; a worked solution prints T, H's
-        #: entries and the equations' sides several times over)
-        self._printed: dict[tuple[str, sp.Basic], str] = {}
+        # every setting the printed text depends on: printers of the same settings (a sheet's variants of
+        # one problem differ in their numbers only) share their levels and what they have printed
+        coordinates = tuple((c.q, c.qd, c.qdd) for c in system.coordinates)
+        level_key = (frozenset(self.roles.items()), coordinates)
+        self.levels = _LEVELS.get(level_key) or _LEVELS.setdefault(level_key, order.levels_of(system))
+        self._settings = (level_key, self.figures)
+        self._printed = _printed(frozenset(names.items()), self._settings)
 
     def with_names(self, names: dict[sp.Symbol, str]) -> TexPrinter:
         """The same printer knowing more names (a statement's free symbols, ``T``, ``q_dot``)."""
         other = TexPrinter.__new__(TexPrinter)
         other.__dict__.update(self.__dict__)
         other.names = {**names, **self.names}
-        other._printed = {}  # other names, other text
+        other._printed = _printed(frozenset(other.names.items()), self._settings)  # other names, other text
         return other
+
+    def name(self, names: dict[sp.Basic, str]) -> None:
+        """Give symbols their LaTeX names from now on (the Newton–Euler step's unknown reactions), in this
+        printer itself: what it prints after this is looked up among texts printed with these names."""
+        self.names.update(names)
+        self._printed = _printed(frozenset(self.names.items()), self._settings)
 
     def __call__(self, expr: object) -> str:
         if not isinstance(expr, sp.Basic):  # a float, or a mutable matrix: not remembered

@@ -3,6 +3,7 @@ of a serial arm, and the Christoffel symbols."""
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Any
 
 import sympy as sp
@@ -376,9 +377,11 @@ def factor_zeros(det: sp.Expr, coordinates: list[sp.Symbol]) -> list[tuple[sp.Sy
     return [(q, z) for q in coordinates if q in zeros for z in sorted(set(zeros[q]), key=float)]
 
 
+@lru_cache(maxsize=256)
 def factor_det(det: sp.Expr) -> sp.Expr:
     """``det H`` in its shortest factored form (``m_2 a_1^2 a_2^2 (m_1 + m_2 \\sin^2\\theta_2)``): factored
-    as it is, and with every ``\\cos^2 x`` written ``1 - \\sin^2 x``; the model's form when neither is shorter."""
+    as it is, and with every ``\\cos^2 x`` written ``1 - \\sin^2 x``; the model's form when neither is shorter.
+    Remembered: a sheet's variants share their problem's symbolic ``det H`` (only their numbers differ)."""
     x = sp.Wild("x")
     candidates = [det]
     for form in (det, det.replace(sp.cos(x) ** 2, 1 - sp.sin(x) ** 2)):

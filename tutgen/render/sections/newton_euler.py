@@ -93,10 +93,14 @@ def newton_euler_section(
 ) -> dict[str, Any]:
     """Per body: motion, applied and inertial terms, the two balances; then reactions, equations and
     the agreement with Lagrange's route."""
-    for r in ne.reactions:
-        for letter, unknown in (("R", r.unknown_force), ("N", r.unknown_moment)):
-            for axis, sym in zip("xyz", unknown, strict=True):
-                tex.names[sym] = f"{letter}_{{{tex_name(r.joint)},{axis}}}"
+    tex.name(
+        {
+            sym: f"{letter}_{{{tex_name(r.joint)},{axis}}}"
+            for r in ne.reactions
+            for letter, unknown in (("R", r.unknown_force), ("N", r.unknown_moment))
+            for axis, sym in zip("xyz", unknown, strict=True)
+        }
+    )
     intro = _NE_INTRO[ne.method]
     if ne.method is not NEMethod.PROJECTION:
         intro += _NE_BALANCE
@@ -205,16 +209,18 @@ _PLANAR_INTRO = (
 
 def _name_unknowns(planar: PlanarNewtonEuler, tex: TexPrinter) -> None:
     """R[pivot].x -> R_{pivot,x}; R[slide].n -> N_{slide}; M[slide] -> M_{slide}."""
+    names: dict[sp.Basic, str] = {}
     for r in planar.reactions:
         j = tex_name(r.joint)
         for sym in r.unknowns:
             name = sym.name
             if name.startswith("M["):
-                tex.names[sym] = f"M_{{{j}}}"
+                names[sym] = f"M_{{{j}}}"
             elif name.endswith(".n"):
-                tex.names[sym] = f"N_{{{j}}}"
+                names[sym] = f"N_{{{j}}}"
             else:
-                tex.names[sym] = f"R_{{{j},{name[-1]}}}"
+                names[sym] = f"R_{{{j},{name[-1]}}}"
+    tex.name(names)
 
 
 def _ij(tex: TexPrinter, fx: sp.Expr, fy: sp.Expr) -> str:
