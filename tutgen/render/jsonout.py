@@ -127,15 +127,17 @@ def derivation_to_json(d: Derivation, expand: bool = True) -> dict[str, Any]:
     return out
 
 
-def results_to_json(d: Derivation, expand: bool = True) -> dict[str, Any]:
+def results_to_json(d: Derivation, expand: bool = True, working: bool = True) -> dict[str, Any]:
     """``results`` of :func:`derivation_to_json` alone, without the document's steps, figure and free-body
-    diagrams, which no answer key holds (a sheet's keys: most of the time of the whole document)."""
-    return _results(d, expand or not is_program_only(d))
+    diagrams, which no answer key holds (a sheet's keys: most of the time of the whole document).
+    ``working=False`` also leaves out the planar Newton–Euler working (``newton_euler.planar``: the free
+    bodies in words), which is not an answer."""
+    return _results(d, expand or not is_program_only(d), working)
 
 
-def _results(d: Derivation, written: bool) -> dict[str, Any]:
+def _results(d: Derivation, written: bool, working: bool = True) -> dict[str, Any]:
     """The document's ``results``; ``written``: whether the entries written out (:data:`EXPANDED_KEYS`)
-    are given."""
+    are given; ``working``: whether the planar Newton–Euler working is."""
     system = d.system
     num = d.numeric
     ask = system.ask
@@ -238,7 +240,7 @@ def _results(d: Derivation, written: bool) -> dict[str, Any]:
             results["christoffel"] = _christoffel(d.christoffel, num, large)
             results["christoffel_first_kind"] = _christoffel(d.christoffel_first_kind, num, large)
         if d.newton_euler is not None and Ask.EQUATIONS_OF_MOTION in ask:
-            results["newton_euler"] = _newton_euler(d.newton_euler, num)
+            results["newton_euler"] = _newton_euler(d.newton_euler, num, working)
         if d.analysis is not None:  # issue 18: equilibria, linear models, momentum (below)
             results.update(analysis_results(d))
         if d.constraints is not None:  # additive, issue 21: multipliers, reduced equations (docs/json-output.md)
@@ -254,7 +256,7 @@ def _free_bodies(d: Derivation) -> list[dict[str, Any]]:
     return [{"body": v["body"], "svg": v["svg"], "labels": v["labels"]} for v in free_bodies(d)]
 
 
-def _newton_euler(ne: NewtonEuler, num: Any) -> dict[str, Any]:
+def _newton_euler(ne: NewtonEuler, num: Any, working: bool = True) -> dict[str, Any]:
     """The Newton-Euler results: the equations in Lagrange's contract ((H q_ddot + C + G - Q)_i, each
     = 0, same order and sign), and each joint's reaction: the force and the moment (about the joint's
     origin) that the parent exerts on the child, world components."""
@@ -266,7 +268,7 @@ def _newton_euler(ne: NewtonEuler, num: Any) -> dict[str, Any]:
         },
         "agrees_with_lagrange": ne.agrees_with_lagrange,
         "remarks": list(ne.remarks),
-        **({"planar": _planar(ne.planar, num)} if ne.planar is not None else {}),
+        **({"planar": _planar(ne.planar, num)} if ne.planar is not None and working else {}),
         **(_constraint_reactions(ne, num) if ne.constraint_reactions else {}),
     }
 

@@ -259,7 +259,10 @@ def _arranged_terms(expr: sp.Expr, levels: _Levels) -> tuple[Term, ...] | None:
     if not isinstance(expanded, sp.Add):
         return None
     ordered = _arrange(list(sp.Add.make_args(expanded)), 0, levels)
-    if sp.expand(sp.Add(*(sign * body for sign, body in ordered)) - expr) != 0:  # the printed form keeps the value
+    # the printed form keeps the value: its expansion is the expression's (the cheap test, which nearly
+    # always decides), or the two differ by zero (numbers of other kinds, 0.5 and 1/2, cancel)
+    printed = sp.expand(sp.Add(*(sign * body for sign, body in ordered)))
+    if printed != expanded and sp.expand(printed - expanded) != 0:
         return None
     return tuple(ordered)
 

@@ -211,11 +211,14 @@ def build_unit(shared: Shared, unit: Unit) -> UnitResult:
     wants_lms = any(f in LMS_FILES for f in shared.formats) and shared.has_variants == (unit.variant is not None)
     results = marks = ""
     if unit.variant is not None or wants_lms:
-        document = results_json(d)  # once, for both keys
+        document = results_json(d, working=False)  # once, for both keys (which leave the working out)
         results = key_results(d, document)
         marks = marking_key(d, base.marking, f"specs/{base.key}.yaml", document)
     extra = problem_assets(base.key, base.number, d, shared.formats)
     figure = _figure_svg(base.key, d.system) if "md" in shared.formats else None
+    # the figure's TikZ while its drawing is at hand (a job is built after every unit, when the drawings
+    # remembered per system are gone); pickled to the parent, the view is this plain dict all the same
+    view["figure"] = dict(view["figure"].items())
     total = time.perf_counter() - start
     return UnitResult(view, d.system, extra, results, marks, concrete, fresh, t_derive, total - t_derive, figure=figure)
 

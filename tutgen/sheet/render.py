@@ -168,14 +168,15 @@ def key_results(derivation: Derivation, results: dict[str, Any] | None = None) -
     return dump_yaml(results)
 
 
-def results_json(derivation: Derivation) -> dict[str, Any]:
+def results_json(derivation: Derivation, working: bool = True) -> dict[str, Any]:
     """``results`` of ``tutgen solve --format json`` (tutgen/render/jsonout.py), without building the
     document's ``steps``, figure and free-body diagrams, which no key holds and no result reads: the steps'
     values and LaTeX were about three quarters of the JSON's time on the tutorial, the figure and the
-    diagrams most of the rest."""
+    diagrams most of the rest. ``working=False``: without the planar Newton–Euler working either, which
+    :func:`key_results` leaves out."""
     from tutgen.render.jsonout import results_to_json
 
-    return results_to_json(derivation)
+    return results_to_json(derivation, working=working)
 
 
 def marking_key(
