@@ -31,6 +31,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any
 
 import sympy as sp
@@ -244,6 +245,13 @@ def all_decimals(expr: Any) -> Any:
         return expr.applyfunc(all_decimals)
     if not isinstance(expr, sp.Basic):
         return expr
+    return _all_decimals(expr)
+
+
+@lru_cache(maxsize=1 << 13)
+def _all_decimals(expr: sp.Basic) -> sp.Basic:
+    """:func:`all_decimals` of an immutable expression, remembered (the sections ask for the same results
+    over and over: T in the energies, in L and in Lagrange's terms)."""
     return expr.xreplace({r: sp.Float(r, 15) for r in expr.atoms(sp.Rational) if r.q != 1})
 
 
