@@ -196,6 +196,8 @@ def _arrange(terms: list[sp.Expr], level: int, levels: _Levels) -> list[Term]:
 def _coefficient(coeffs: list[sp.Expr], level: int, levels: _Levels) -> Term:
     """A group's coefficient: the common factor in front, the rest arranged from ``level`` on, with a
     positive lead (``-(m_3 + m_4) g``, ``(m_1 + m_2) a_1^2 + m_2 a_2^2``)."""
+    if len(coeffs) == 1 and coeffs[0].is_Atom:  # a lone number or symbol: nothing to factor (factor_terms'
+        return positive_lead(coeffs[0])  # own first test), nor to arrange
     total = sp.factor_terms(sp.Add(*coeffs))
     if _has_pythagoras(total):  # expanding may show sin² x + cos² x (a moment balance's l² θ̈ terms)
         total = sp.factor_terms(sp.trigsimp(total))
