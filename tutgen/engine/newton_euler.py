@@ -34,11 +34,10 @@ Each equation is put in Lagrange's contract, (H q_ddot + C + G - Q)_i = 0, and c
 from __future__ import annotations
 
 import dataclasses
+from typing import TYPE_CHECKING
 
 import sympy as sp
 
-from tutgen.engine.constrained_ne import constraint_reactions, reduction_agreement
-from tutgen.engine.constraints import ConstrainedDynamics
 from tutgen.engine.derivation import Check, Derivation
 from tutgen.engine.inertia import BodyInertia, body_inertia
 from tutgen.engine.kinematics import Kinematics
@@ -56,11 +55,13 @@ from tutgen.engine.ne_types import (
     Vec,
     group_rates,
 )
-from tutgen.engine.planar_ne import planar_newton_euler
 from tutgen.engine.tidy import is_zero, memoised, tidy, trig_reduce
 from tutgen.errors import AgreementError, DerivationError
 from tutgen.limits import checkpoint
 from tutgen.model.system import GROUND, Joint, JointKind, System
+
+if TYPE_CHECKING:  # the constrained and planar routes are imported when a spec takes them (start-up, issue 17)
+    from tutgen.engine.constraints import ConstrainedDynamics
 
 __all__ = [
     "PROJECTION_REMARK",
@@ -140,10 +141,14 @@ def derive_newton_euler(
     ne = builder.build(lagrange)
     if constraints is not None:
         checkpoint("Newton-Euler: with the reduced route's multipliers")
+        from tutgen.engine.constrained_ne import reduction_agreement
+
         ne = dataclasses.replace(ne, reduction=reduction_agreement(system, constraints, ne.equations_of_motion))
     if not planar:
         return ne
     checkpoint("Newton-Euler: the planar form")
+    from tutgen.engine.planar_ne import planar_newton_euler
+
     return dataclasses.replace(ne, planar=planar_newton_euler(system, kin, ne))
 
 
@@ -208,7 +213,11 @@ class _Builder:
         constraints: ConstrainedDynamics | None = None,
     ) -> None:
         self.system = system
-        self.constraint_reactions = constraint_reactions(system, kin, constraints) if constraints else ()
+        self.constraint_reactions: tuple[ConstraintReaction, ...] = ()
+        if constraints:
+            from tutgen.engine.constrained_ne import constraint_reactions
+
+            self.constraint_reactions = constraint_reactions(system, kin, constraints)
         self.kin = kin
         self.inertia = inertia
         self.rates = rates
