@@ -541,10 +541,22 @@ def free_bodies(d: Derivation) -> list[dict[str, Any]]:
     ne = d.newton_euler
     if ne is None or ne.planar is None or Ask.EQUATIONS_OF_MOTION not in d.system.ask:
         return []
+    hit = _DRAWN.get(id(d))
+    if hit is not None and hit[0] is d:  # drawn for this derivation already (the section, then the files)
+        return [dict(v) for v in hit[1]]
     coords = {c.name: c.latex for c in d.system.coordinates}
     forces = {b.body: diagram_forces(b, coords) for b in ne.planar.balances}
     # only the bodies the step has a balance for (a massless body has none)
-    return [v for v in free_body_views(d.system, forces) if v["body"] in forces]
+    views = [v for v in free_body_views(d.system, forces) if v["body"] in forces]
+    while len(_DRAWN) >= 16:
+        _DRAWN.pop(next(iter(_DRAWN)))
+    _DRAWN[id(d)] = (d, views)
+    return [dict(v) for v in views]
+
+
+#: the free bodies drawn for the last few derivations (by identity): a solution written to a file draws them
+#: for its Newton–Euler step and again for the SVGs beside it, a sheet's unit for its step and its assets
+_DRAWN: dict[int, tuple[Derivation, list[dict[str, Any]]]] = {}
 
 
 def diagram_forces(b: PlanarBalance, coords: dict[str, str]) -> tuple[BodyForce, ...]:
