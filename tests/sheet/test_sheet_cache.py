@@ -104,3 +104,22 @@ def test_each_problem_and_values_is_built_once_per_sheet() -> None:
         assert sum(1 for u in units if u.problem == i and u.variant is not None) == len(distinct)
         if p.key.startswith("p10"):  # no parameters: one unit for all forty variants
             assert len(distinct) == 1
+
+
+def test_a_keys_results_leave_out_only_the_planar_working() -> None:
+    """The keys drop newton_euler.planar (the free bodies in words, not an answer): built without it, the
+    rest is the whole JSON's results."""
+    from tutgen.render.jsonout import derivation_to_json
+    from tutgen.sheet.build import ProblemBase, variant_derivation
+    from tutgen.sheet.render import key_results, results_json
+
+    sheet = _sheet(["p03"])
+    (p,) = sheet.problems
+    derivations, _ = derive_problems(sheet)
+    d, _, _, _ = variant_derivation(ProblemBase(p.number, p.key, str(p.path), p.text, derivations[0]), "v002", 7, None)
+    whole = derivation_to_json(d)["results"]
+    assert "planar" in whole["newton_euler"]
+    lean = results_json(d, working=False)
+    assert "planar" not in lean["newton_euler"]
+    assert lean == {**whole, "newton_euler": {k: v for k, v in whole["newton_euler"].items() if k != "planar"}}
+    assert key_results(d, lean) == key_results(d, whole)

@@ -1,0 +1,42 @@
+"""A sheet does each piece of work once (issue 17): each unit (a problem at one set of values) draws its
+figure and its free bodies once, for the Markdown and the LaTeX sheets and the files beside them alike."""
+
+from __future__ import annotations
+
+import collections
+import dataclasses
+
+import pytest
+
+from tests.conftest import SPECS
+from tutgen.sheet.build import build_sheet, derive_problems
+from tutgen.sheet.model import load_sheet
+from tutgen.sheet.variants import variant_ids
+
+
+def test_each_unit_draws_its_figure_and_free_bodies_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    import tutgen.figure.build as figure_build
+    import tutgen.figure.freebody as freebody
+
+    sheet = load_sheet(SPECS / "tutorial-1" / "sheet.yaml")
+    # the cart-pendulum prints Newton–Euler with its free bodies; the RR arm does not
+    sheet = dataclasses.replace(sheet, problems=tuple(p for p in sheet.problems if p.key[:3] in ("p03", "p05")))
+    derivations, _ = derive_problems(sheet)
+    drawn: collections.Counter[str] = collections.Counter()
+    draw, diagram = figure_build._draw_system, freebody.free_body_diagram
+
+    def counting_draw(system):  # type: ignore[no-untyped-def]
+        drawn[system.source] += 1
+        return draw(system)
+
+    def counting_diagram(system, body, forces=None):  # type: ignore[no-untyped-def]
+        drawn[f"{body} (free body)"] += 1
+        return diagram(system, body, forces)
+
+    monkeypatch.setattr(figure_build, "_draw_system", counting_draw)
+    monkeypatch.setattr(freebody, "free_body_diagram", counting_diagram)
+    build = build_sheet(sheet, formats=("md", "tex"), variants=variant_ids(2), seed=3, derivations=derivations)
+    assert any(name.endswith(".svg") for name, _ in build.files)
+    # three units per problem: the nominal values and each variant's (whose values differ here)
+    assert {k: v for k, v in drawn.items() if "free body" not in k} == {str(p.path): 3 for p in sheet.problems}
+    assert drawn["cart (free body)"] == drawn["pendulum (free body)"] == 3
