@@ -356,3 +356,27 @@ def test_shell_completion_script_and_completions() -> None:
     options = _module(env={"_TUTGEN_COMPLETE": "complete_bash", "COMP_WORDS": "tutgen sheet --no", "COMP_CWORD": "2"})
     assert "--no-progress" in options.stdout.split() and "--quiet" not in options.stdout.split()
     assert "--install-completion" in run("--help").stdout
+
+
+def test_cli_sizes_sympys_cache_before_sympy_is_imported() -> None:
+    """sympy reads SYMPY_CACHE_SIZE once, when it is first imported: a command sizes the cache for its
+    thousands of expressions (issue 17) and keeps a size the user set."""
+    import os
+    import subprocess
+    import sys
+
+    probe = (
+        "import sys; from tutgen.cli import main; assert 'sympy' not in sys.modules; main.prepare_sympy_cache(); "
+        "import sympy.core.cache as c; print(c.SYMPY_CACHE_SIZE)"  # the size sympy read
+    )
+    env = {k: v for k, v in os.environ.items() if k != "SYMPY_CACHE_SIZE"}
+    out = subprocess.run([sys.executable, "-c", probe], env=env, capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "10000"
+    out = subprocess.run(
+        [sys.executable, "-c", probe],
+        env={**env, "SYMPY_CACHE_SIZE": "123"},
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    assert out.stdout.strip() == "123"

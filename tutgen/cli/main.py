@@ -6,6 +6,7 @@ jinja2) are imported inside the commands, so `tutgen --help` stays fast.
 
 from __future__ import annotations
 
+import os
 import sys
 
 import typer
@@ -63,8 +64,22 @@ app.command(name="simulate", cls=Command)(
 app.command(name="code", cls=Command)(code.code)  # tutgen/cli/code.py
 
 
+#: entries of sympy's cache of results (its own default: 1 000), read from ``SYMPY_CACHE_SIZE`` when sympy is
+#: first imported: a command that prints thousands of expressions (a sheet's variants) computed again what
+#: had fallen out of it. 10 000: about 7 % less CPU for a sheet of 20 variants, 9 MB more memory (issue 17)
+SYMPY_CACHE_SIZE = 10_000
+
+
+def prepare_sympy_cache() -> None:
+    """Give sympy's cache :data:`SYMPY_CACHE_SIZE` entries, unless the user set ``SYMPY_CACHE_SIZE`` or sympy
+    is imported already (its cache is made then). Results never depend on it, only the time they take."""
+    if "sympy" not in sys.modules:
+        os.environ.setdefault("SYMPY_CACHE_SIZE", str(SYMPY_CACHE_SIZE))
+
+
 def run() -> None:
-    """Console-script entry point."""
+    """Console-script entry point (sympy is imported inside the commands: its cache is sized first)."""
+    prepare_sympy_cache()
     app(prog_name="tutgen")
 
 
