@@ -216,9 +216,10 @@ def build_unit(shared: Shared, unit: Unit) -> UnitResult:
         marks = marking_key(d, base.marking, f"specs/{base.key}.yaml", document)
     extra = problem_assets(base.key, base.number, d, shared.formats)
     figure = _figure_svg(base.key, d.system) if "md" in shared.formats else None
-    # the figure's TikZ while its drawing is at hand (a job is built after every unit, when the drawings
-    # remembered per system are gone); pickled to the parent, the view is this plain dict all the same
-    view["figure"] = dict(view["figure"].items())
+    if "tex" in shared.formats or "pdf" in shared.formats:
+        # the figure's TikZ while its drawing is at hand (a job is built after every unit, when the drawings
+        # remembered per system are gone); pickled to the parent, the view is this plain dict all the same
+        view["figure"] = dict(view["figure"].items())
     total = time.perf_counter() - start
     return UnitResult(view, d.system, extra, results, marks, concrete, fresh, t_derive, total - t_derive, figure=figure)
 
