@@ -376,9 +376,12 @@ def _serial_route(
         coriolis_matrix=c_mat,
         gravity_vector=g_vec,
         equations_of_motion=eom,
-        christoffel=LazyTable(n, lambda: dyn.christoffel, lambda: dyn.christoffel_polys),
+        christoffel=LazyTable(n, lambda: dyn.christoffel, lambda: dyn.christoffel_keys, dyn.christoffel_poly),
         christoffel_first_kind=LazyTable(
-            n, lambda: dyn.christoffel_first_kind, lambda: dyn.christoffel_first_kind_polys
+            n,
+            lambda: dyn.christoffel_first_kind,
+            lambda: sorted(dyn.christoffel_first_kind_polys),
+            lambda key: dyn.christoffel_first_kind_polys[key],
         ),
         remarks=tuple(remarks),
         checks=tuple(checks),

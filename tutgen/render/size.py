@@ -75,7 +75,7 @@ def count_ops_upto(exprs: Iterable[Any], limit: int) -> int:
     bound = 0
     for e in exprs:
         if isinstance(e, LazyTable):  # a large arm's table, not yet converted: its own lower bound
-            bound += e.min_ops()
+            bound += e.min_ops(limit - bound)  # summed only as far as the limit
             if bound > limit:
                 return limit + 1
             items += [x for x in e.values() if x != 0]
