@@ -460,7 +460,9 @@ def _grouped_sparse(terms: list[tuple[dict[int, int], object]], gens: Sequence[s
 # Add and Mul normally re-sort and re-collect their arguments on every construction, which is most of
 # the cost of printing a 6-DOF arm's C q_dot (tens of thousands of terms). The sums and products built
 # here are already collected (distinct monomials, distinct bases), so they are assembled from sorted
-# arguments directly: the objects are the ones Add(*args) / Mul(*args) would give.
+# arguments directly: the objects are the ones Add(*args) / Mul(*args) would give. They are commutative
+# (every generator is a parameter, a coordinate, a rate or a number, and cos/sin of coordinates), which
+# is passed rather than asked of every argument (issue 17).
 
 
 def _fast_add(terms: Sequence[sp.Expr]) -> sp.Expr:
@@ -480,7 +482,7 @@ def _fast_add(terms: Sequence[sp.Expr]) -> sp.Expr:
     _addsort(args)
     if number != 0:
         args.insert(0, number)
-    return Add._from_args(args)
+    return Add._from_args(args, True)
 
 
 def _fast_mul(coeff: sp.Rational, factors: Sequence[sp.Expr]) -> sp.Expr:
@@ -489,12 +491,12 @@ def _fast_mul(coeff: sp.Rational, factors: Sequence[sp.Expr]) -> sp.Expr:
     if not factors:
         return coeff
     if len(factors) == 1 and (coeff == 1 or factors[0].is_Add):
-        return factors[0] if coeff == 1 else Mul._from_args((coeff, factors[0]))
+        return factors[0] if coeff == 1 else Mul._from_args((coeff, factors[0]), True)
     args = list(factors)
     _mulsort(args)
     if coeff != 1:
         args.insert(0, coeff)
-    return Mul._from_args(args)
+    return Mul._from_args(args, True)
 
 
 def _times(expr: sp.Expr, factor: sp.Expr) -> sp.Expr:

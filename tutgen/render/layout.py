@@ -24,6 +24,7 @@ before the relation sign), ready for ``align*`` in LaTeX (which may break across
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass
 
@@ -166,6 +167,7 @@ def _matrix_width(body: str, scale: float) -> float:
     return sum(widths) + (cols - 1) * 10.0 * scale + 2 * 4.5 * scale
 
 
+@functools.lru_cache(maxsize=16384)  # a pure function; a display's layout asks for the same part many times
 def tex_width(tex: str, scale: float = 1.0, display: bool = True) -> float:
     """The typeset width of a formula in TeX points, estimated from the LaTeX tutgen writes: glyph widths of
     Computer Modern at 11 pt, scripts at 70 %, a fraction as wide as its wider part, a matrix as its columns
@@ -310,7 +312,8 @@ def tex_width(tex: str, scale: float = 1.0, display: bool = True) -> float:
 # --- cutting a formula at its top-level operators -------------------------------------------------------
 
 
-def _scan(tex: str) -> list[tuple[int, str]]:
+@functools.lru_cache(maxsize=4096)  # layout() cuts each equation of a display several times (issue 17)
+def _scan(tex: str) -> tuple[tuple[int, str], ...]:
     """Positions of the top-level break points of a formula: ``("rel", i)`` at a relation ``=`` and
     ``("add", i)`` before a binary ``+`` or ``-`` (sympy prints them with a space on each side)."""
     points: list[tuple[int, str]] = []
@@ -344,7 +347,7 @@ def _scan(tex: str) -> list[tuple[int, str]]:
             elif ch in "+-" and before and before[-1] not in "=&(,{" and not before.endswith(("\\quad", "\\left(")):
                 points.append((i, "add"))
         i += 1
-    return points
+    return tuple(points)
 
 
 def relation_parts(tex: str) -> list[str]:
