@@ -447,7 +447,8 @@ def serial_dynamics(system: System) -> SerialDynamics:
     t_kin = time.perf_counter()
 
     # H = sum over bodies: translation of each mass element + rotation about the centre of mass
-    h = [[zero] * n for _ in range(n)]
+    # the products of each H_ab, summed in one pass at the end (TrigPoly.sum_of_products)
+    products: list[list[list[tuple[TrigPoly, TrigPoly]]]] = [[[] for _ in range(n)] for _ in range(n)]
     u = zero
     for body in system.bodies:
         bi = body_inertia(body)
@@ -470,16 +471,17 @@ def serial_dynamics(system: System) -> SerialDynamics:
             mvc = {c: [x.scale(m) for x in vc[c]] for c in cols}
             for a_i, a in enumerate(cols):
                 for b in cols[a_i:]:
-                    h[a][b] = h[a][b] + _dot(vc[a], mvc[b])
+                    products[a][b] += [(x, y) for x, y in zip(vc[a], mvc[b], strict=True) if x and y]
             u = u - _dot(grav[body.name], pos[body.name]).scale(m)
         if inertia != sp.zeros(3, 3):
             im = [[const(inertia[r, s]) for s in range(3)] for r in range(3)]
             iw = {c: _apply(im, wj[c]) for c in cols}
             for a_i, a in enumerate(cols):
                 for b in cols[a_i:]:
-                    h[a][b] = h[a][b] + _dot(wj[a], iw[b])
+                    products[a][b] += [(x, y) for x, y in zip(wj[a], iw[b], strict=True) if x and y]
         if has_gravity:
             u = u - _dot(grav[body.name], first_moment)
+    h = [[TrigPoly.sum_of_products(pairs) if pairs else zero for pairs in row] for row in products]
     for joint in system.joints:
         if joint.coordinate is not None and joint.reflected_inertia is not None:
             k = index[joint.coordinate.q]

@@ -285,46 +285,69 @@ class TrigPoly:
         return TrigPoly(self.algebra, {k: v.mul_ground(q) for k, v in self.terms.items()})
 
     def __mul__(self, other: TrigPoly) -> TrigPoly:
-        zero = self.algebra.zero_k
+        return TrigPoly.sum_of_products([(self, other)])
+
+    @staticmethod
+    def sum_of_products(pairs: Sequence[tuple[TrigPoly, TrigPoly]]) -> TrigPoly:
+        """The sum of x * y over the ``pairs`` (not empty), in one pass: the coefficients are summed as
+        plain dicts (monomial -> number) per frequency and made polynomials once at the end, and the
+        products of two trigonometric factors are halved once per frequency, not each on its own (issue 17:
+        adding each product to a polynomial copied the growing sum every time; the symbolic PUMA's H is
+        a third of its derivation)."""
+        alg = pairs[0][0].algebra
+        ring = alg.ring
+        zero = alg.zero_k
+        nothing = ring.domain.zero
+        monomial_mul = ring.monomial_mul
+        whole: dict[Key, dict[tuple[int, ...], object]] = {}
+        halves: dict[Key, dict[tuple[int, ...], object]] = {}
+
+        def add(into: dict[Key, dict[tuple[int, ...], object]], key: Key, terms: list, negative: bool) -> None:
+            d = into.get(key)
+            if d is None:
+                d = into[key] = {}
+            get = d.get
+            if negative:
+                for m, v in terms:
+                    d[m] = get(m, nothing) - v
+            else:
+                for m, v in terms:
+                    d[m] = get(m, nothing) + v
+
+        for x, y in pairs:
+            y_terms = [(key, list(c.items())) for key, c in y.terms.items()]
+            for (ka, fa), ca in x.terms.items():
+                a_const = ka == zero
+                a_items = list(ca.items())
+                for (kb, fb), b_items in y_terms:
+                    c = [(monomial_mul(m1, m2), v1 * v2) for m1, v1 in a_items for m2, v2 in b_items]
+                    if a_const:
+                        add(whole, (kb, fb), c, False)
+                        continue
+                    if kb == zero:
+                        add(whole, (ka, fa), c, False)
+                        continue
+                    ks = tuple([p + q for p, q in zip(ka, kb, strict=True)])  # canonical: both were
+                    kd, _, sign = _canonical(tuple([p - q for p, q in zip(ka, kb, strict=True)]), 1)
+                    if fa == 0 and fb == 0:  # cos a cos b = (cos(a-b) + cos(a+b)) / 2
+                        add(halves, (kd, 0), c, False)
+                        add(halves, (ks, 0), c, False)
+                    elif fa == 1 and fb == 1:  # sin a sin b = (cos(a-b) - cos(a+b)) / 2
+                        add(halves, (kd, 0), c, False)
+                        add(halves, (ks, 0), c, True)
+                    else:  # sin a cos b = (sin(a+b) + sin(a-b)) / 2;  cos a sin b = (sin(a+b) - sin(a-b)) / 2
+                        add(halves, (ks, 1), c, False)
+                        if kd != zero:
+                            add(halves, (kd, 1), c, (fa == 1) != (sign > 0))
+        for key, d in halves.items():
+            add(whole, key, [(m, v * _HALF) for m, v in d.items() if v], False)
+        new = ring.zero.new
         out: dict[Key, PolyElement] = {}
-        # the products of two trigonometric factors are summed here and halved once per frequency at the
-        # end, not each product on its own (issue 17: a third of the time of a 6-DOF arm's H)
-        halves: dict[Key, PolyElement] = {}
-
-        def put(into: dict[Key, PolyElement], key: Key, c: PolyElement) -> None:
-            s = into.get(key)
-            into[key] = c if s is None else s + c
-
-        def take(into: dict[Key, PolyElement], key: Key, c: PolyElement) -> None:
-            s = into.get(key)
-            into[key] = -c if s is None else s - c
-
-        for (ka, fa), ca in self.terms.items():
-            a_const = ka == zero
-            for (kb, fb), cb in other.terms.items():
-                c = ca * cb
-                if a_const:
-                    put(out, (kb, fb), c)
-                    continue
-                if kb == zero:
-                    put(out, (ka, fa), c)
-                    continue
-                ks = tuple([x + y for x, y in zip(ka, kb, strict=True)])  # canonical: both were
-                kd, _, sign = _canonical(tuple([x - y for x, y in zip(ka, kb, strict=True)]), 1)
-                if fa == 0 and fb == 0:  # cos a cos b = (cos(a-b) + cos(a+b)) / 2
-                    put(halves, (kd, 0), c)
-                    put(halves, (ks, 0), c)
-                elif fa == 1 and fb == 1:  # sin a sin b = (cos(a-b) - cos(a+b)) / 2
-                    put(halves, (kd, 0), c)
-                    take(halves, (ks, 0), c)
-                else:  # sin a cos b = (sin(a+b) + sin(a-b)) / 2;  cos a sin b = (sin(a+b) - sin(a-b)) / 2
-                    put(halves, (ks, 1), c)
-                    if kd != zero:
-                        (put if (fa == 1) == (sign > 0) else take)(halves, (kd, 1), c)
-        for key, c in halves.items():
-            if c:
-                put(out, key, c.mul_ground(_HALF))
-        return TrigPoly(self.algebra, {k: v for k, v in out.items() if v})
+        for key, d in whole.items():
+            poly = new({m: v for m, v in d.items() if v})
+            if poly:
+                out[key] = poly
+        return TrigPoly(alg, out)
 
     def diff(self, j: int) -> TrigPoly:
         """d/dq_j: exact, by the frequency (an angle) or coefficient by coefficient (any other)."""
