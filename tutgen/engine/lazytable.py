@@ -18,28 +18,27 @@ from typing import Any
 
 import sympy as sp
 
-from tutgen.engine.trigpoly import TrigPoly
-
 __all__ = ["LazyMatrix", "LazyTable"]
 
 
 class LazyTable(Mapping[tuple[int, int, int], sp.Expr]):
     """Every symbol (i, j, k) of an n x n x n table, zeros included, computed on first read from
     ``nonzero`` (the converted nonzero symbols); ``keys`` gives the keys of the nonzero symbols and
-    ``poly`` the symbol of a key as an exact polynomial, for the sizes. Pickled, it is a plain dict (a
-    sheet's worker sends its results)."""
+    ``bound`` a lower bound of ``sympy.count_ops`` of the symbol of a key, from the exact polynomials
+    (without converting, and for the tutorial's h_ijk without computing the symbol either), for the
+    sizes. Pickled, it is a plain dict (a sheet's worker sends its results)."""
 
     def __init__(
         self,
         n: int,
         nonzero: Callable[[], Mapping[tuple[int, int, int], sp.Expr]],
         keys: Callable[[], Sequence[tuple[int, int, int]]],
-        poly: Callable[[tuple[int, int, int]], TrigPoly],
+        bound: Callable[[tuple[int, int, int]], int],
     ) -> None:
         self._n = n
         self._nonzero = nonzero
         self._keys = keys
-        self._poly = poly
+        self._bound = bound
         self._table: dict[tuple[int, int, int], sp.Expr] | None = None
 
     @property
@@ -53,12 +52,11 @@ class LazyTable(Mapping[tuple[int, int, int], sp.Expr]):
 
     def min_ops(self, limit: int | None = None) -> int:
         """A lower bound of ``sympy.count_ops`` of the nonzero symbols together, without converting any
-        (:meth:`TrigPoly.min_ops <tutgen.engine.trigpoly.TrigPoly.min_ops>`). With ``limit``, the sum
-        stops as soon as it passes the limit, and only the symbols summed so far are computed (a large
-        arm's worked solution needs a sixth of its 195 h_ijk to know they are too long to print)."""
+        (the sum of ``bound``). With ``limit``, the sum stops as soon as it passes the limit (a large
+        arm's worked solution needs a fifth of its 195 h_ijk to know they are too long to print)."""
         total = 0
         for key in self._keys():
-            total += self._poly(key).min_ops()
+            total += self._bound(key)
             if limit is not None and total > limit:
                 break
         return total

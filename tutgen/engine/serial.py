@@ -156,6 +156,21 @@ class SerialDynamics:
             (i, j, k) for i in range(n) for j in range(n) for k in range(n) if not _is_half_of(dh[i][j][k], dh[j][k][i])
         )
 
+    def christoffel_min_ops(self, key: tuple[int, int, int]) -> int:
+        """A lower bound of ``sympy.count_ops`` of the tutorial's h_ijk (at most its
+        :meth:`TrigPoly.min_ops <tutgen.engine.trigpoly.TrigPoly.min_ops>`), without computing it: the terms of
+        dH_ij/dq_k and dH_jk/dq_i / 2 at a frequency only one of them has cannot cancel, so h_ijk has at
+        least those terms (s of them: s - 1 additions) and their cosines and sines."""
+        i, j, k = key
+        a, b = self.exact.dh[i][j][k].terms, self.exact.dh[j][k][i].terms
+        zero = self.exact.algebra.zero_k
+        size = trig = 0
+        for freq in a.keys() ^ b.keys():
+            size += len(a[freq] if freq in a else b[freq])
+            if freq[0] != zero:
+                trig += sum(1 for v in freq[0] if v)
+        return max(size - 1, 0) + trig
+
     def christoffel_poly(self, key: tuple[int, int, int]) -> TrigPoly:
         """The tutorial's h_ijk of ``key``, exactly (computed once; zero for a key not in
         :attr:`christoffel_keys`)."""
