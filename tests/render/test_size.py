@@ -132,3 +132,11 @@ def test_count_ops_is_sympys_on_derived_results(spec):
 )
 def test_count_ops_is_sympys_on_random_expressions(expr):
     assert count_ops(expr) == int(sp.count_ops(expr))
+
+
+def test_count_ops_stops_past_its_limit():
+    long_sum = sp.Add(*(sp.Symbol(f"m{i}") * sp.cos(x) ** i for i in range(40)))
+    full = count_ops(long_sum)
+    assert count_ops(long_sum, full) == full
+    stopped = count_ops(long_sum, 10)
+    assert 10 < stopped < full  # a count past the limit, not the whole walk

@@ -4,20 +4,22 @@ A worked solution prints a result whole, entry by entry or not at all, by its nu
 (``sympy.count_ops``). A full ``count_ops`` walks every node and builds new expressions on the way
 (negations, ``fraction``): on the fully symbolic PUMA 560 (180 000 operations of H, C and G alone, a
 million of Christoffel symbols) it took most of the time of ``tutgen solve``, only to decide not to
-print. :func:`count_ops_upto` first walks the tree for a cheap lower bound of ``count_ops`` and
-stops as soon as it passes the limit; only an expression that may fit is counted exactly.
+print. :func:`count_ops_upto` counts with :func:`count_ops` (sympy's count, the same number, faster),
+which stops as soon as its count passes the limit; a large arm's results held by
+:mod:`tutgen.engine.lazytable` are bounded from below without converting them.
 
-The lower bound counts, node by node, what ``count_ops`` counts for that node at least: ``k - 1``
-operations (ADD or SUB) for a sum of ``k`` terms, one for a power (POW, DIV or EXP), one for an
-applied function or derivative, and for a product of ``k`` factors ``k - 1`` less one per power
-factor (``x*y**-1`` is a single DIV) and less one for a factor -1 (``a - x*y`` is one SUB and one
-MUL). ``count_ops``'s rewriting of a product (``-a``, ``fraction``) never removes a sum, a product's
-factor or a power's base from the tree, so the bound holds (tests/render/test_size.py checks it on
-every kind of node and on derived results).
+:func:`lower_bound_exceeds` is a cheaper walk for a lower bound alone: it counts, node by node, what
+``count_ops`` counts for that node at least: ``k - 1`` operations (ADD or SUB) for a sum of ``k`` terms,
+one for a power (POW, DIV or EXP), one for an applied function or derivative, and for a product of ``k``
+factors ``k - 1`` less one per power factor (``x*y**-1`` is a single DIV) and less one for a factor -1
+(``a - x*y`` is one SUB and one MUL). ``count_ops``'s rewriting of a product (``-a``, ``fraction``)
+never removes a sum, a product's factor or a power's base from the tree, so the bound holds
+(tests/render/test_size.py checks it on every kind of node and on derived results).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Mapping
 from typing import Any
 
@@ -93,17 +95,15 @@ def count_ops_upto(exprs: Iterable[Any], limit: int) -> int:
             items += [x for x in e if isinstance(x, sp.Basic)]
         elif isinstance(e, sp.Basic):
             items.append(e)
-    if lower_bound_exceeds(items, limit):
-        return limit + 1
     total = 0
-    for item in items:
-        total += count_ops(item)
+    for item in items:  # counted exactly, each stopping once the total passes the limit
+        total += count_ops(item, limit - total)
         if total > limit:
             return limit + 1
     return total
 
 
-def count_ops(expr: sp.Basic) -> int:
+def count_ops(expr: sp.Basic, limit: int | None = None) -> int:
     """``sympy.count_ops(expr)``, the same number, about three times as fast on long sums of products
     (issue 17: the symbolic PUMA's T, 22 905 operations, is counted for its worked solution).
 
@@ -115,6 +115,10 @@ def count_ops(expr: sp.Basic) -> int:
     ``fraction``). Anything but a non-relational expression goes to ``sympy.count_ops``.
     tests/render/test_size.py compares the two on every derived result of the specs.
 
+    With ``limit``, the walk stops as soon as its count passes the limit and returns that count (more
+    than ``limit``, at most the full count): the count only grows along the walk, so a result that
+    certainly does not fit is not walked to its end (issue 17).
+
     >>> x, y = sp.symbols("x y")
     >>> count_ops(x * y / 2 - sp.sin(x) ** 2 + 3), int(sp.count_ops(x * y / 2 - sp.sin(x) ** 2 + 3))
     (7, 7)
@@ -122,9 +126,12 @@ def count_ops(expr: sp.Basic) -> int:
     if not isinstance(expr, sp.Expr) or expr.is_Relational:
         return int(sp.count_ops(expr))
     one, minus_one, e = sp.S.One, sp.S.NegativeOne, sp.S.Exp1
+    stop = math.inf if limit is None else limit
     total = 0
     todo: list[sp.Basic] = [expr]
     while todo:
+        if total > stop:
+            return total
         a = todo.pop()
         if a.is_Rational:
             if a is not one:
