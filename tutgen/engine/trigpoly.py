@@ -93,7 +93,8 @@ class TrigAlgebra:
         self.one = TrigPoly(self, {(self.zero_k, 0): self.ring.one})
         self.zero = TrigPoly(self, {})
         self._gen_index = {g: i for i, g in enumerate(self.gens)}
-        self._trig_cache: dict[Key, sp.Expr] = {}
+        self._trig_cache: dict[Key, tuple[int, sp.Expr]] = {}
+        self._angle_cache: dict[Freq, tuple[sp.Expr, bool]] = {}
 
     # -- building ---------------------------------------------------------------------------------
     def coefficient(self, expr: sp.Expr | int) -> PolyElement:
@@ -133,10 +134,13 @@ class TrigAlgebra:
         hit = self._trig_cache.get(key)
         if hit is None:
             k, kind = key
-            angle = sp.Add(*[v * q for v, q in zip(k, self.coordinates, strict=True) if v])
-            sign = 1
-            if angle.could_extract_minus_sign():
-                angle, sign = -angle, (-1 if kind else 1)
+            turned = self._angle_cache.get(k)  # the angle, and whether sympy shows it negated, once per k
+            if turned is None:
+                angle = sp.Add(*[v * q for v, q in zip(k, self.coordinates, strict=True) if v])
+                turned = (-angle, True) if angle.could_extract_minus_sign() else (angle, False)
+                self._angle_cache[k] = turned
+            angle, negated = turned
+            sign = -1 if negated and kind else 1
             # unevaluated: sympy's cos/sin would return the same object after trying every rule on an
             # argument that is a sum of coordinates with integer factors and no sign to pull out, which was
             # most of converting a 6-DOF arm's H (tests/engine/test_serial.py compares with the evaluated)
