@@ -36,6 +36,17 @@ def test_import_tutgen_does_not_import_sympy() -> None:
     assert done.stdout.split() == [tutgen.__version__, "False"]
 
 
+def test_large_serial_arm_does_not_import_newton_euler() -> None:
+    """The route of a large serial arm runs no Newton-Euler derivation (its check is the numeric
+    inverse dynamics), so its modules stay out of the command's start-up (issue 17)."""
+    code = (
+        "import sys, tutgen; d = tutgen.derive(tutgen.load('specs/arms/scara.yaml')); tutgen.render(d);"
+        "print(sorted(m for m in sys.modules if 'newton_euler' in m or 'constrained_ne' in m))"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+    assert done.stdout.split() == ["[]"]
+
+
 def test_load_derive_render_is_the_command_lines_pipeline() -> None:
     spec = SPECS / "tutorial-1/p06-two-prismatic.yaml"
     d = tutgen.derive(tutgen.load(spec))

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import pickle
 
+import pytest
 import sympy as sp
 
 from tests.conftest import SPECS, solved
@@ -28,7 +29,8 @@ def test_lazy_table_equals_the_table_of_every_symbol():
 def test_lazy_table_is_sized_without_converting():
     system, _, _ = solved(str(SPECS / "arms" / "scara.yaml"))
     dyn = serial_dynamics(system)
-    table = LazyTable(len(system.coordinates), lambda: dyn.christoffel, lambda: dyn.christoffel_polys)
+    n = len(system.coordinates)
+    table = LazyTable(n, lambda: dyn.christoffel, lambda: dyn.christoffel_keys, dyn.christoffel_min_ops)
     bound, count = table.min_ops(), nonzero_count(table)
     assert not table.is_converted
     ops = int(sum(sp.count_ops(v) for v in dyn.christoffel.values()))
@@ -120,3 +122,89 @@ def test_lazy_matrix_is_sized_without_converting():
     assert not c.is_converted
     exact = int(sum(sp.count_ops(e) for e in c))
     assert count_ops_upto([c], exact) == exact  # within it: the exact count of the converted entries
+
+
+# ---------------------------------------------------------------------------------------------
+# Sizing a large arm's table for a worked solution: only as many symbols as the budget needs (issue 17)
+# ---------------------------------------------------------------------------------------------
+
+
+def test_christoffel_keys_are_the_nonzero_symbols():
+    """The nonzero h_ijk, found by comparing dH_ij/dq_k with dH_jk/dq_i / 2 without subtracting, are
+    those of the subtraction, and each symbol equals it."""
+    for spec in ("scara.yaml", "planar-4r.yaml", "stanford.yaml"):
+        system, _, _ = solved(str(SPECS / "arms" / spec))
+        dyn = serial_dynamics(system)
+        dh = dyn.exact.dh
+        half = dyn.exact.algebra.ring.ground_new(dyn.exact.algebra.ring.domain(1, 2))
+        n = len(system.coordinates)
+        expected = {}
+        for i in range(n):
+            for j in range(n):
+                for k in range(n):
+                    h = dh[i][j][k] - dh[j][k][i].scale(half)
+                    if h:
+                        expected[(i, j, k)] = h
+        assert list(dyn.christoffel_keys) == list(expected), spec
+        assert all(dyn.christoffel_poly(key) == p for key, p in expected.items()), spec
+
+
+def test_christoffel_bound_is_below_the_symbols_own():
+    """h_ijk's bound from the terms that cannot cancel is at most its own (TrigPoly.min_ops), which is at
+    most sympy's count_ops of it."""
+    for spec in ("scara.yaml", "planar-4r.yaml", "stanford.yaml"):
+        system, _, _ = solved(str(SPECS / "arms" / spec))
+        dyn = serial_dynamics(system)
+        for key in dyn.christoffel_keys:
+            assert 0 <= dyn.christoffel_min_ops(key) <= dyn.christoffel_poly(key).min_ops(), (spec, key)
+        assert sum(dyn.christoffel_min_ops(key) for key in dyn.christoffel_keys) > 0, spec
+
+
+def test_lazy_table_bound_stops_at_the_limit():
+    system, _, _ = solved(str(SPECS / "arms" / "stanford.yaml"))
+    dyn = serial_dynamics(system)
+    asked: list[tuple[int, int, int]] = []
+
+    def bound(key: tuple[int, int, int]) -> int:
+        asked.append(key)
+        return dyn.christoffel_poly(key).min_ops()
+
+    table = LazyTable(len(system.coordinates), lambda: dyn.christoffel, lambda: dyn.christoffel_keys, bound)
+    full = table.min_ops()
+    assert len(asked) == len(dyn.christoffel_keys)
+    asked.clear()
+    first = dyn.christoffel_poly(dyn.christoffel_keys[0]).min_ops()
+    assert table.min_ops(first - 1) == first and len(asked) == 1  # past the limit after one symbol
+    asked.clear()
+    assert count_ops_upto([table], first - 1) == first and len(asked) == 1 and not table.is_converted
+    assert table.min_ops(full) == full
+
+
+def test_worked_solution_of_a_large_arm_sizes_few_christoffel_symbols(monkeypatch: pytest.MonkeyPatch):
+    """The Markdown of the symbolic PUMA 560 says its h_ijk are too long to print, and how many are nonzero,
+    from the bounds of a few of them: no symbol is computed, and the table is not converted (the whole
+    table was computed, only to be counted)."""
+    from tutgen.api import render
+    from tutgen.engine import serial
+    from tutgen.engine.pipeline import derive
+    from tutgen.spec.validate import load_system
+
+    computed: list[tuple[int, int, int]] = []
+    bounded: list[tuple[int, int, int]] = []
+    poly, bound = serial.SerialDynamics.christoffel_poly, serial.SerialDynamics.christoffel_min_ops
+
+    def counting_poly(self: serial.SerialDynamics, key: tuple[int, int, int]) -> object:
+        computed.append(key)
+        return poly(self, key)
+
+    def counting_bound(self: serial.SerialDynamics, key: tuple[int, int, int]) -> int:
+        bounded.append(key)
+        return bound(self, key)
+
+    monkeypatch.setattr(serial.SerialDynamics, "christoffel_poly", counting_poly)
+    monkeypatch.setattr(serial.SerialDynamics, "christoffel_min_ops", counting_bound)
+    d = derive(load_system(SPECS / "arms" / "puma560.yaml"))
+    text = render(d, "md")
+    assert "195 of the 216 symbols $h_{ijk}$ are nonzero" in text
+    assert not computed and 0 < len(set(bounded)) < 195 // 3
+    assert not d.christoffel.is_converted and not d.christoffel_first_kind.is_converted

@@ -347,6 +347,36 @@ def test_trigpoly_output_is_canonical_sympy() -> None:
     _numeric_zero(e - (M * sp.sin(a) * sp.cos(b) * sp.cos(c) + L * sp.sin(c)))
 
 
+def test_trigpoly_trig_factors_are_what_sympy_evaluates() -> None:
+    """cos/sin are built unevaluated (sympy's rules tried on every argument were most of converting a
+    6-DOF arm's H): each is the object sympy's evaluated cos/sin of its argument gives, equal and with the
+    same hash, on every arm of specs/arms and a chain whose angle sums need their sign pulled out."""
+    a, b, c = sp.symbols("a b c")
+    alg = TrigAlgebra([a, b, c], [True, True, True], [M])
+    exprs = [(alg.sin(0) * alg.cos(1) * alg.sin(2) - alg.cos(0) * alg.cos(1) * alg.cos(2) * alg.cos(2)).to_expr()]
+    for spec in sorted((SPECS / "arms").glob("*.yaml")):
+        dyn = serial_dynamics(load_system(spec))
+        exprs += [*dyn.mass_matrix, *dyn.gravity_vector, dyn.potential_energy]
+    seen = 0
+    for e in exprs:
+        for node in sp.preorder_traversal(e):
+            if isinstance(node, (sp.sin, sp.cos)):
+                seen += 1
+                evaluated = type(node)(*node.args)
+                assert evaluated == node and hash(evaluated) == hash(node) and type(evaluated) is type(node)
+    assert seen > 100
+
+
+def test_trigpoly_combination_is_the_sum(alg: TrigAlgebra) -> None:
+    p, r = _samples(alg)
+    q = p * r
+    half = sp.QQ(1, 2)
+    expected = (p + r - q).scale(alg.ring.ground_new(half))
+    assert TrigPoly.combination([p, r], [q], half) == expected
+    assert TrigPoly.combination([p], [p], half) == alg.zero
+    assert TrigPoly.combination([q, q], [p], sp.QQ(3)) == (q + q - p).scale(alg.ring.ground_new(sp.QQ(3)))
+
+
 def test_serial_output_is_canonical_sympy() -> None:
     dyn = serial_dynamics(system_of(spatial_arm()))
     assert all(_is_canonical(e) for e in dyn.mass_matrix)

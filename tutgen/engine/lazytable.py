@@ -13,30 +13,32 @@ are computed on first read; its shape and a lower bound of its size are known be
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import Any
 
 import sympy as sp
-
-from tutgen.engine.trigpoly import TrigPoly
 
 __all__ = ["LazyMatrix", "LazyTable"]
 
 
 class LazyTable(Mapping[tuple[int, int, int], sp.Expr]):
     """Every symbol (i, j, k) of an n x n x n table, zeros included, computed on first read from
-    ``nonzero`` (the converted nonzero symbols); ``polys`` gives the same symbols as exact polynomials,
-    for the sizes. Pickled, it is a plain dict (a sheet's worker sends its results)."""
+    ``nonzero`` (the converted nonzero symbols); ``keys`` gives the keys of the nonzero symbols and
+    ``bound`` a lower bound of ``sympy.count_ops`` of the symbol of a key, from the exact polynomials
+    (without converting, and for the tutorial's h_ijk without computing the symbol either), for the
+    sizes. Pickled, it is a plain dict (a sheet's worker sends its results)."""
 
     def __init__(
         self,
         n: int,
         nonzero: Callable[[], Mapping[tuple[int, int, int], sp.Expr]],
-        polys: Callable[[], Mapping[tuple[int, int, int], TrigPoly]],
+        keys: Callable[[], Sequence[tuple[int, int, int]]],
+        bound: Callable[[tuple[int, int, int]], int],
     ) -> None:
         self._n = n
         self._nonzero = nonzero
-        self._polys = polys
+        self._keys = keys
+        self._bound = bound
         self._table: dict[tuple[int, int, int], sp.Expr] | None = None
 
     @property
@@ -46,12 +48,18 @@ class LazyTable(Mapping[tuple[int, int, int], sp.Expr]):
 
     def nonzero_count(self) -> int:
         """How many symbols are not zero, without converting any."""
-        return len(self._polys())
+        return len(self._keys())
 
-    def min_ops(self) -> int:
+    def min_ops(self, limit: int | None = None) -> int:
         """A lower bound of ``sympy.count_ops`` of the nonzero symbols together, without converting any
-        (:meth:`TrigPoly.min_ops <tutgen.engine.trigpoly.TrigPoly.min_ops>`)."""
-        return sum(p.min_ops() for p in self._polys().values())
+        (the sum of ``bound``). With ``limit``, the sum stops as soon as it passes the limit (a large
+        arm's worked solution needs a fifth of its 195 h_ijk to know they are too long to print)."""
+        total = 0
+        for key in self._keys():
+            total += self._bound(key)
+            if limit is not None and total > limit:
+                break
+        return total
 
     def _full(self) -> dict[tuple[int, int, int], sp.Expr]:
         if self._table is None:

@@ -39,7 +39,6 @@ from tutgen.engine.kinematics import Kinematics
 from tutgen.engine.lagrange import energies, lagrange_equations
 from tutgen.engine.lazytable import LazyMatrix, LazyTable
 from tutgen.engine.matrix_form import christoffel_symbols, coriolis_terms, equations_of_motion, gravity_vector
-from tutgen.engine.newton_euler import derive_newton_euler
 from tutgen.engine.potential import potential_sources
 from tutgen.engine.remarks import REMARK_CONSTANT_MASS_MATRIX, degeneracy_remarks, rotor_remark, zero_remarks
 from tutgen.engine.serial import REMARK_FAST_PATH, is_large_serial_chain, serial_checks, serial_dynamics
@@ -278,6 +277,8 @@ def _general_route(
     if not kinds & wanted or kin is None or not system.bodies or system.is_constrained:
         return derivation  # a constrained spec's, with its constraint reactions: in _constrained
     checkpoint("Newton-Euler")
+    from tutgen.engine.newton_euler import derive_newton_euler  # not on a large serial arm's route (issue 17)
+
     # the planar working (free bodies, eliminations: a quarter more time) only when it is printed
     ne = derive_newton_euler(system, derivation, kin, planar=Method.NEWTON_EULER in methods)
     return dataclasses.replace(derivation, newton_euler=ne, checks=(*derivation.checks, ne.agreement))
@@ -298,6 +299,8 @@ def _constrained(d: Derivation, kinds: set[StepKind]) -> Derivation:
     if kinds & {StepKind.EQUATIONS_OF_MOTION, StepKind.LAGRANGE_EQUATIONS, StepKind.NEWTON_EULER} and d.kinematics:
         # (d.kinematics: bodies placed by the spec, not a given kinetic energy)
         checkpoint("Newton-Euler")  # with the constraint reactions (tutgen.engine.newton_euler)
+        from tutgen.engine.newton_euler import derive_newton_euler
+
         ne = derive_newton_euler(system, d, planar=Method.NEWTON_EULER in d.methods, constraints=cd)
         checks = (*d.checks, ne.agreement, *((ne.reduction,) if ne.reduction else ()))
         d = dataclasses.replace(d, newton_euler=ne, checks=checks)
@@ -376,9 +379,12 @@ def _serial_route(
         coriolis_matrix=c_mat,
         gravity_vector=g_vec,
         equations_of_motion=eom,
-        christoffel=LazyTable(n, lambda: dyn.christoffel, lambda: dyn.christoffel_polys),
+        christoffel=LazyTable(n, lambda: dyn.christoffel, lambda: dyn.christoffel_keys, dyn.christoffel_min_ops),
         christoffel_first_kind=LazyTable(
-            n, lambda: dyn.christoffel_first_kind, lambda: dyn.christoffel_first_kind_polys
+            n,
+            lambda: dyn.christoffel_first_kind,
+            lambda: sorted(dyn.christoffel_first_kind_polys),
+            lambda key: dyn.christoffel_first_kind_polys[key].min_ops(),
         ),
         remarks=tuple(remarks),
         checks=tuple(checks),

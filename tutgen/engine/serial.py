@@ -35,14 +35,15 @@ from __future__ import annotations
 import math
 import random
 import time
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 
 import sympy as sp
+from sympy import QQ
 
 from tutgen.engine.derivation import Check
 from tutgen.engine.inertia import body_inertia
+from tutgen.engine.inverse_dynamics import numeric_inverse_dynamics
 from tutgen.engine.lazytable import LazyMatrix
 from tutgen.engine.placement import place_joint
 from tutgen.engine.trigpoly import TrigAlgebra, TrigPoly, monomial_times_sum
@@ -65,6 +66,7 @@ __all__ = [
 
 Vec3 = list[TrigPoly]
 Mat3 = list[list[TrigPoly]]
+_HALF = QQ(1, 2)
 
 
 def is_serial_chain(system: System) -> bool:
@@ -134,21 +136,51 @@ class SerialDynamics:
     potential_energy: sp.Expr  # of gravity
     timings: tuple[tuple[str, float], ...]
     exact: _Exact = field(repr=False, compare=False)
+    _christoffel_cache: dict[tuple[int, int, int], TrigPoly] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )
 
     @cached_property
     def christoffel_polys(self) -> dict[tuple[int, int, int], TrigPoly]:
-        """The tutorial's h_ijk, nonzero only, exactly (cheap: the conversion to sympy is what costs)."""
+        """The tutorial's h_ijk, nonzero only, exactly (:meth:`christoffel_poly` of each nonzero key)."""
+        return {key: self.christoffel_poly(key) for key in self.christoffel_keys}
+
+    @cached_property
+    def christoffel_keys(self) -> tuple[tuple[int, int, int], ...]:
+        """The keys (i, j, k) of the nonzero h_ijk, in order, found without computing them:
+        h_ijk = dH_ij/dq_k - dH_jk/dq_i / 2 is zero exactly when dH_ij/dq_k = dH_jk/dq_i / 2, which is
+        decided frequency by frequency, usually at the first (issue 17: a worked solution counts them)."""
         n = len(self.coordinates)
         dh = self.exact.dh
-        half = self.exact.algebra.ring.ground_new(self.exact.algebra.ring.domain(1, 2))
-        out: dict[tuple[int, int, int], TrigPoly] = {}
-        for i in range(n):
-            for j in range(n):
-                for k in range(n):
-                    h = dh[i][j][k] - dh[j][k][i].scale(half)
-                    if h:
-                        out[(i, j, k)] = h
-        return out
+        return tuple(
+            (i, j, k) for i in range(n) for j in range(n) for k in range(n) if not _is_half_of(dh[i][j][k], dh[j][k][i])
+        )
+
+    def christoffel_min_ops(self, key: tuple[int, int, int]) -> int:
+        """A lower bound of ``sympy.count_ops`` of the tutorial's h_ijk (at most its
+        :meth:`TrigPoly.min_ops <tutgen.engine.trigpoly.TrigPoly.min_ops>`), without computing it: the terms of
+        dH_ij/dq_k and dH_jk/dq_i / 2 at a frequency only one of them has cannot cancel, so h_ijk has at
+        least those terms (s of them: s - 1 additions) and their cosines and sines."""
+        i, j, k = key
+        a, b = self.exact.dh[i][j][k].terms, self.exact.dh[j][k][i].terms
+        zero = self.exact.algebra.zero_k
+        size = trig = 0
+        for freq in a.keys() ^ b.keys():
+            size += len(a[freq] if freq in a else b[freq])
+            if freq[0] != zero:
+                trig += sum(1 for v in freq[0] if v)
+        return max(size - 1, 0) + trig
+
+    def christoffel_poly(self, key: tuple[int, int, int]) -> TrigPoly:
+        """The tutorial's h_ijk of ``key``, exactly (computed once; zero for a key not in
+        :attr:`christoffel_keys`)."""
+        hit = self._christoffel_cache.get(key)
+        if hit is None:
+            i, j, k = key
+            dh = self.exact.dh
+            hit = TrigPoly.combination([dh[i][j][k], dh[i][j][k]], [dh[j][k][i]], _HALF)
+            self._christoffel_cache[key] = hit
+        return hit
 
     @cached_property
     def christoffel_first_kind_polys(self) -> dict[tuple[int, int, int], TrigPoly]:
@@ -230,6 +262,14 @@ class SerialDynamics:
                 [(gam[(i, j, k)], 1, (self.rates[k],)) for k in range(n) if (i, j, k) in gam]
             ),
         )
+
+
+def _is_half_of(a: TrigPoly, b: TrigPoly) -> bool:
+    """a = b / 2, exactly: the same frequencies, each coefficient of a half of b's (stops at the first
+    that differs)."""
+    if a.terms.keys() != b.terms.keys():
+        return False
+    return all(c == b.terms[key].mul_ground(_HALF) for key, c in a.terms.items())
 
 
 def _coriolis_matrix(ex: _Exact) -> list[list[TrigPoly]]:
@@ -422,7 +462,8 @@ def serial_dynamics(system: System) -> SerialDynamics:
     t_kin = time.perf_counter()
 
     # H = sum over bodies: translation of each mass element + rotation about the centre of mass
-    h = [[zero] * n for _ in range(n)]
+    # the products of each H_ab, summed in one pass at the end (TrigPoly.sum_of_products)
+    products: list[list[list[tuple[TrigPoly, TrigPoly]]]] = [[[] for _ in range(n)] for _ in range(n)]
     u = zero
     for body in system.bodies:
         bi = body_inertia(body)
@@ -445,16 +486,17 @@ def serial_dynamics(system: System) -> SerialDynamics:
             mvc = {c: [x.scale(m) for x in vc[c]] for c in cols}
             for a_i, a in enumerate(cols):
                 for b in cols[a_i:]:
-                    h[a][b] = h[a][b] + _dot(vc[a], mvc[b])
+                    products[a][b] += [(x, y) for x, y in zip(vc[a], mvc[b], strict=True) if x and y]
             u = u - _dot(grav[body.name], pos[body.name]).scale(m)
         if inertia != sp.zeros(3, 3):
             im = [[const(inertia[r, s]) for s in range(3)] for r in range(3)]
             iw = {c: _apply(im, wj[c]) for c in cols}
             for a_i, a in enumerate(cols):
                 for b in cols[a_i:]:
-                    h[a][b] = h[a][b] + _dot(wj[a], iw[b])
+                    products[a][b] += [(x, y) for x, y in zip(wj[a], iw[b], strict=True) if x and y]
         if has_gravity:
             u = u - _dot(grav[body.name], first_moment)
+    h = [[TrigPoly.sum_of_products(pairs) if pairs else zero for pairs in row] for row in products]
     for joint in system.joints:
         if joint.coordinate is not None and joint.reflected_inertia is not None:
             k = index[joint.coordinate.q]
@@ -466,14 +508,13 @@ def serial_dynamics(system: System) -> SerialDynamics:
 
     # C q_dot from the Christoffel symbols of the first kind, G = dU/dq
     dh = [[[h[i][j].diff(k) for k in range(n)] for j in range(n)] for i in range(n)]
-    half = alg.ring.ground_new(alg.ring.domain(1, 2))
     # (C q_dot itself is never formed as a TrigPoly: it is written from the converted symbols, and the
     # numeric checks contract the symbols' values)
     gammas: dict[tuple[int, int, int], TrigPoly] = {}  # Gamma_ijk, j <= k
     for i in range(n):
         for j in range(n):
             for k in range(j, n):
-                gam = (dh[i][j][k] + dh[i][k][j] - dh[j][k][i]).scale(half)
+                gam = TrigPoly.combination([dh[i][j][k], dh[i][k][j]], [dh[j][k][i]], _HALF)
                 if gam:
                     gammas[(i, j, k)] = gam
     g_vec = [u.diff(i) for i in range(n)]
@@ -537,126 +578,6 @@ def cse_form(dyn: SerialDynamics) -> tuple[list[tuple[sp.Symbol, sp.Expr]], list
     exprs = [dyn.mass_matrix, dyn.coriolis_vector, dyn.gravity_vector]
     replacements, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("x"), order="none")
     return replacements, [sp.ImmutableMatrix(r) for r in reduced]
-
-
-def numeric_inverse_dynamics(
-    system: System, values: dict[sp.Symbol, float], q: Sequence[float], qd: Sequence[float], qdd: Sequence[float]
-) -> list[float]:
-    """tau = H q_ddot + C q_dot + G by a numeric recursive Newton-Euler pass (floats, world axes),
-    independent of the symbolic route: the agreement check of the fast path.
-
-    Forward: each link's rotation, angular velocity and acceleration, and its origin's acceleration,
-    from its parent's. Backward: the force and moment each joint transmits; tau_i is the moment (or
-    the force, prismatic) along the joint axis. Gravity enters as an upward acceleration of the base.
-    """
-    n = len(system.coordinates)
-    index = {c.q: i for i, c in enumerate(system.coordinates)}
-    by_child = {j.child: j for j in system.joints}
-
-    floats = {s: sp.Float(v) for s, v in values.items()}
-
-    def num(e: sp.Expr) -> float:
-        return float(sp.sympify(e).xreplace(floats))  # xreplace: subs with a large dict is slow
-
-    def mat(m: sp.MatrixBase) -> list[list[float]]:
-        return [[num(m[i, k]) for k in range(3)] for i in range(3)]
-
-    def mv(a: list[list[float]], v: list[float]) -> list[float]:
-        return [sum(a[i][k] * v[k] for k in range(3)) for i in range(3)]
-
-    def mm(a: list[list[float]], b: list[list[float]]) -> list[list[float]]:
-        return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
-
-    def cross(a: list[float], b: list[float]) -> list[float]:
-        return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-
-    def add(*vs: list[float]) -> list[float]:
-        return [sum(v[i] for v in vs) for i in range(3)]
-
-    def scale(s: float, v: list[float]) -> list[float]:
-        return [s * x for x in v]
-
-    def rot(axis: list[float], angle: float) -> list[list[float]]:
-        c, s = math.cos(angle), math.sin(angle)
-        x, y, z = axis
-        return [
-            [c + x * x * (1 - c), x * y * (1 - c) - z * s, x * z * (1 - c) + y * s],
-            [y * x * (1 - c) + z * s, c + y * y * (1 - c), y * z * (1 - c) - x * s],
-            [z * x * (1 - c) - y * s, z * y * (1 - c) + x * s, c + z * z * (1 - c)],
-        ]
-
-    g = [num(x) for x in system.gravity] if system.gravity is not None else [0.0, 0.0, 0.0]
-    eye = [[1.0 if i == k else 0.0 for k in range(3)] for i in range(3)]
-    frame: dict[str, tuple] = {GROUND: (eye, [0.0] * 3, [0.0] * 3, [0.0] * 3, [-x for x in g], [0.0] * 3)}
-    # (R world-from-link, origin, omega, alpha, origin acceleration (with -g), origin velocity)
-
-    def place(name: str) -> None:
-        if name in frame:
-            return
-        j = by_child[name]
-        place(j.parent)
-        r_p, o_p, w_p, al_p, a_p, v_p = frame[j.parent]
-        fixed = mm(r_p, mat(j.rotation))
-        axis_w = mv(fixed, [num(x) for x in j.axis])
-        k = index[j.coordinate.q] if j.coordinate is not None else None
-        value = (q[k] if k is not None else 0.0) + num(j.offset)
-        rate = qd[k] if k is not None else 0.0
-        acc = qdd[k] if k is not None else 0.0
-        lever = mv(r_p, [num(x) for x in j.origin_offset])
-        o = add(o_p, lever)
-        v = add(v_p, cross(w_p, lever))
-        a = add(a_p, cross(al_p, lever), cross(w_p, cross(w_p, lever)))
-        w, al, r = w_p, al_p, fixed
-        if j.kind is JointKind.REVOLUTE:
-            r = mm(fixed, rot([num(x) for x in j.axis], value))
-            w = add(w_p, scale(rate, axis_w))
-            al = add(al_p, scale(acc, axis_w), cross(w_p, scale(rate, axis_w)))
-        elif j.kind is JointKind.PRISMATIC:
-            s = scale(value, axis_w)
-            o = add(o, s)
-            v = add(v, cross(w_p, s), scale(rate, axis_w))
-            a = add(
-                a, cross(al_p, s), cross(w_p, cross(w_p, s)), scale(2 * rate, cross(w_p, axis_w)), scale(acc, axis_w)
-            )
-        frame[name] = (r, o, w, al, a, v)
-
-    wrench: dict[str, tuple[list[float], list[float]]] = {}  # force and moment about the origin, world
-    for body in system.bodies:
-        place(body.name)
-        r, o, w, al, a, _ = frame[body.name]
-        bi = body_inertia(body)
-        m = num(bi.mass)
-        c = mv(r, [num(x) for x in bi.com]) if m else [0.0] * 3
-        a_c = add(a, cross(al, c), cross(w, cross(w, c)))
-        i_w = mm(mm(r, mat(bi.inertia_com)), [list(row) for row in zip(*r, strict=True)])
-        f = scale(m, a_c)
-        moment = add(mv(i_w, al), cross(w, mv(i_w, w)), cross(c, f))
-        wrench[body.name] = (f, moment)
-    # backward: children first (reverse of a parents-first order)
-    order: list[str] = []
-    for body in system.bodies:
-        chain = []
-        name = body.name
-        while name != GROUND and name not in order and name not in chain:
-            chain.append(name)
-            name = by_child[name].parent
-        order += reversed(chain)
-    tau = [0.0] * n
-    for name in reversed(order):
-        j = by_child[name]
-        f, moment = wrench[name]
-        _, o, *_ = frame[name]
-        axis_w = mv(mm(frame[j.parent][0], mat(j.rotation)), [num(x) for x in j.axis])
-        if j.coordinate is not None:
-            k = index[j.coordinate.q]
-            tau[k] = sum(axis_w[i] * (moment if j.kind is JointKind.REVOLUTE else f)[i] for i in range(3))
-            if j.reflected_inertia is not None:  # the rotor behind a gearbox: n^2 J_m q_ddot
-                tau[k] += num(j.reflected_inertia) * qdd[k]
-        if j.parent != GROUND:
-            pf, pm = wrench[j.parent]
-            _, po, *_ = frame[j.parent]
-            wrench[j.parent] = (add(pf, f), add(pm, moment, cross(add(o, scale(-1, po)), f)))
-    return tau
 
 
 @dataclass(frozen=True)

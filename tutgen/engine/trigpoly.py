@@ -93,7 +93,8 @@ class TrigAlgebra:
         self.one = TrigPoly(self, {(self.zero_k, 0): self.ring.one})
         self.zero = TrigPoly(self, {})
         self._gen_index = {g: i for i, g in enumerate(self.gens)}
-        self._trig_cache: dict[Key, sp.Expr] = {}
+        self._trig_cache: dict[Key, tuple[int, sp.Expr]] = {}
+        self._angle_cache: dict[Freq, tuple[sp.Expr, bool]] = {}
 
     # -- building ---------------------------------------------------------------------------------
     def coefficient(self, expr: sp.Expr | int) -> PolyElement:
@@ -133,11 +134,17 @@ class TrigAlgebra:
         hit = self._trig_cache.get(key)
         if hit is None:
             k, kind = key
-            angle = sp.Add(*[v * q for v, q in zip(k, self.coordinates, strict=True) if v])
-            sign = 1
-            if angle.could_extract_minus_sign():
-                angle, sign = -angle, (-1 if kind else 1)
-            hit = (sign, sp.sin(angle) if kind else sp.cos(angle))
+            turned = self._angle_cache.get(k)  # the angle, and whether sympy shows it negated, once per k
+            if turned is None:
+                angle = sp.Add(*[v * q for v, q in zip(k, self.coordinates, strict=True) if v])
+                turned = (-angle, True) if angle.could_extract_minus_sign() else (angle, False)
+                self._angle_cache[k] = turned
+            angle, negated = turned
+            sign = -1 if negated and kind else 1
+            # unevaluated: sympy's cos/sin would return the same object after trying every rule on an
+            # argument that is a sum of coordinates with integer factors and no sign to pull out, which was
+            # most of converting a 6-DOF arm's H (tests/engine/test_serial.py compares with the evaluated)
+            hit = (sign, sp.sin(angle, evaluate=False) if kind else sp.cos(angle, evaluate=False))
             self._trig_cache[key] = hit
         return hit
 
@@ -248,10 +255,28 @@ class TrigPoly:
     def __sub__(self, other: TrigPoly) -> TrigPoly:
         return self + (-other)
 
+    @staticmethod
+    def combination(plus: Sequence[TrigPoly], minus: Sequence[TrigPoly], factor: object) -> TrigPoly:
+        """(sum of ``plus`` - sum of ``minus``) times a nonzero rational ``factor``, in one pass: no
+        intermediate sums or negations, and the factor applied once per frequency by a number, not by a
+        product of polynomials (a 6-DOF arm's Christoffel symbols, issue 17). ``plus`` is not empty."""
+        out: dict[Key, PolyElement] = {}
+        for p in plus:
+            for key, c in p.terms.items():
+                s = out.get(key)
+                out[key] = c if s is None else s + c
+        for p in minus:
+            for key, c in p.terms.items():
+                s = out.get(key)
+                out[key] = -c if s is None else s - c
+        return TrigPoly(plus[0].algebra, {k: v.mul_ground(factor) for k, v in out.items() if v})
+
     def scale(self, c: PolyElement) -> TrigPoly:
         """Multiplied by a coefficient (a polynomial without angles)."""
         if not c:
             return self.algebra.zero
+        if c.is_ground:  # a number: each coefficient times it, without a product of polynomials
+            return self.times(c.LC)
         out = {}
         for k, v in self.terms.items():
             p = v * c
@@ -259,38 +284,74 @@ class TrigPoly:
                 out[k] = p
         return TrigPoly(self.algebra, out)
 
+    def times(self, q: object) -> TrigPoly:
+        """Multiplied by a nonzero rational number (an element of QQ)."""
+        return TrigPoly(self.algebra, {k: v.mul_ground(q) for k, v in self.terms.items()})
+
     def __mul__(self, other: TrigPoly) -> TrigPoly:
-        zero = self.algebra.zero_k
+        return TrigPoly.sum_of_products([(self, other)])
+
+    @staticmethod
+    def sum_of_products(pairs: Sequence[tuple[TrigPoly, TrigPoly]]) -> TrigPoly:
+        """The sum of x * y over the ``pairs`` (not empty), in one pass: the coefficients are summed as
+        plain dicts (monomial -> number) per frequency and made polynomials once at the end, and the
+        products of two trigonometric factors are halved once per frequency, not each on its own (issue 17:
+        adding each product to a polynomial copied the growing sum every time; the symbolic PUMA's H is
+        a third of its derivation)."""
+        alg = pairs[0][0].algebra
+        ring = alg.ring
+        zero = alg.zero_k
+        nothing = ring.domain.zero
+        monomial_mul = ring.monomial_mul
+        whole: dict[Key, dict[tuple[int, ...], object]] = {}
+        halves: dict[Key, dict[tuple[int, ...], object]] = {}
+
+        def add(into: dict[Key, dict[tuple[int, ...], object]], key: Key, terms: list, negative: bool) -> None:
+            d = into.get(key)
+            if d is None:
+                d = into[key] = {}
+            get = d.get
+            if negative:
+                for m, v in terms:
+                    d[m] = get(m, nothing) - v
+            else:
+                for m, v in terms:
+                    d[m] = get(m, nothing) + v
+
+        for x, y in pairs:
+            y_terms = [(key, list(c.items())) for key, c in y.terms.items()]
+            for (ka, fa), ca in x.terms.items():
+                a_const = ka == zero
+                a_items = list(ca.items())
+                for (kb, fb), b_items in y_terms:
+                    c = [(monomial_mul(m1, m2), v1 * v2) for m1, v1 in a_items for m2, v2 in b_items]
+                    if a_const:
+                        add(whole, (kb, fb), c, False)
+                        continue
+                    if kb == zero:
+                        add(whole, (ka, fa), c, False)
+                        continue
+                    ks = tuple([p + q for p, q in zip(ka, kb, strict=True)])  # canonical: both were
+                    kd, _, sign = _canonical(tuple([p - q for p, q in zip(ka, kb, strict=True)]), 1)
+                    if fa == 0 and fb == 0:  # cos a cos b = (cos(a-b) + cos(a+b)) / 2
+                        add(halves, (kd, 0), c, False)
+                        add(halves, (ks, 0), c, False)
+                    elif fa == 1 and fb == 1:  # sin a sin b = (cos(a-b) - cos(a+b)) / 2
+                        add(halves, (kd, 0), c, False)
+                        add(halves, (ks, 0), c, True)
+                    else:  # sin a cos b = (sin(a+b) + sin(a-b)) / 2;  cos a sin b = (sin(a+b) - sin(a-b)) / 2
+                        add(halves, (ks, 1), c, False)
+                        if kd != zero:
+                            add(halves, (kd, 1), c, (fa == 1) != (sign > 0))
+        for key, d in halves.items():
+            add(whole, key, [(m, v * _HALF) for m, v in d.items() if v], False)
+        new = ring.zero.new
         out: dict[Key, PolyElement] = {}
-
-        def put(key: Key, c: PolyElement) -> None:
-            s = out.get(key)
-            out[key] = c if s is None else s + c
-
-        for (ka, fa), ca in self.terms.items():
-            a_const = ka == zero
-            for (kb, fb), cb in other.terms.items():
-                c = ca * cb
-                if a_const:
-                    put((kb, fb), c)
-                    continue
-                if kb == zero:
-                    put((ka, fa), c)
-                    continue
-                c = c.mul_ground(_HALF)
-                ks = tuple([x + y for x, y in zip(ka, kb, strict=True)])  # canonical: both were
-                kd, _, sign = _canonical(tuple([x - y for x, y in zip(ka, kb, strict=True)]), 1)
-                if fa == 0 and fb == 0:  # cos a cos b = (cos(a-b) + cos(a+b)) / 2
-                    put((kd, 0), c)
-                    put((ks, 0), c)
-                elif fa == 1 and fb == 1:  # sin a sin b = (cos(a-b) - cos(a+b)) / 2
-                    put((kd, 0), c)
-                    put((ks, 0), -c)
-                else:  # sin a cos b = (sin(a+b) + sin(a-b)) / 2;  cos a sin b = (sin(a+b) - sin(a-b)) / 2
-                    put((ks, 1), c)
-                    if kd != zero:
-                        put((kd, 1), c if (fa == 1) == (sign > 0) else -c)
-        return TrigPoly(self.algebra, {k: v for k, v in out.items() if v})
+        for key, d in whole.items():
+            poly = new({m: v for m, v in d.items() if v})
+            if poly:
+                out[key] = poly
+        return TrigPoly(alg, out)
 
     def diff(self, j: int) -> TrigPoly:
         """d/dq_j: exact, by the frequency (an angle) or coefficient by coefficient (any other)."""
@@ -426,7 +487,9 @@ def _grouped_sparse(terms: list[tuple[dict[int, int], object]], gens: Sequence[s
 # Add and Mul normally re-sort and re-collect their arguments on every construction, which is most of
 # the cost of printing a 6-DOF arm's C q_dot (tens of thousands of terms). The sums and products built
 # here are already collected (distinct monomials, distinct bases), so they are assembled from sorted
-# arguments directly: the objects are the ones Add(*args) / Mul(*args) would give.
+# arguments directly: the objects are the ones Add(*args) / Mul(*args) would give. They are commutative
+# (every generator is a parameter, a coordinate, a rate or a number, and cos/sin of coordinates), which
+# is passed rather than asked of every argument (issue 17).
 
 
 def _fast_add(terms: Sequence[sp.Expr]) -> sp.Expr:
@@ -446,7 +509,7 @@ def _fast_add(terms: Sequence[sp.Expr]) -> sp.Expr:
     _addsort(args)
     if number != 0:
         args.insert(0, number)
-    return Add._from_args(args)
+    return Add._from_args(args, True)
 
 
 def _fast_mul(coeff: sp.Rational, factors: Sequence[sp.Expr]) -> sp.Expr:
@@ -455,12 +518,12 @@ def _fast_mul(coeff: sp.Rational, factors: Sequence[sp.Expr]) -> sp.Expr:
     if not factors:
         return coeff
     if len(factors) == 1 and (coeff == 1 or factors[0].is_Add):
-        return factors[0] if coeff == 1 else Mul._from_args((coeff, factors[0]))
+        return factors[0] if coeff == 1 else Mul._from_args((coeff, factors[0]), True)
     args = list(factors)
     _mulsort(args)
     if coeff != 1:
         args.insert(0, coeff)
-    return Mul._from_args(args)
+    return Mul._from_args(args, True)
 
 
 def _times(expr: sp.Expr, factor: sp.Expr) -> sp.Expr:
