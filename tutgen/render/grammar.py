@@ -62,8 +62,18 @@ def grammar_text(expr: sp.Basic) -> str:
     'm0 + m12 + m15 + m18 + m21 + m'
     """
     if not lower_bound_exceeds([expr], LEX_BUDGET):
-        return _LEX.doprint(expr)
+        try:
+            return _lex_text(expr)
+        except TypeError:  # unhashable (a mutable matrix): printed, not remembered
+            return str(_LEX.doprint(expr))
     return _text(expr)[0]
+
+
+@lru_cache(maxsize=1 << 13)
+def _lex_text(expr: sp.Basic) -> str:
+    """A short expression in sympy's lex order, remembered: sorting its terms is most of a sheet's answer
+    keys' time, and the results of a problem's variants repeat (a velocity holds the lengths alone)."""
+    return str(_LEX.doprint(expr))
 
 
 def fast_text(expr: sp.Basic) -> str:
