@@ -83,3 +83,51 @@ def test_checks_negative_mass_is_the_specs_fault() -> None:
     with pytest.raises(DerivationError, match=r"a mass or inertia must not be negative \(given: m = -2\)") as info:
         derive(system, "lagrange")
     assert "report" not in str(info.value)
+
+
+SERIAL_WITH_UNITS = """
+tutgen: 1
+title: spatial RRPR arm with units
+parameters: {m1: {dimension: mass}, m2: {dimension: mass}, m3: {dimension: mass}, m4: {dimension: mass},
+             l1: {dimension: length}, l2: {dimension: length}, c3: {dimension: length},
+             I1: {dimension: inertia}, I2: {dimension: inertia}, I3: {dimension: inertia}, I4: {dimension: inertia},
+             g: {dimension: acceleration}, tau1: {dimension: torque}, F3: {dimension: force}}
+coordinates: {q1: {}, q2: {}, d3: {dimension: length}, q4: {}}
+gravity: [0, 0, -g]
+bodies:
+  b1: {mass: m1, com: [0, 0, l1], inertia: {zz: I1}}
+  b2: {mass: m2, com: [l2, 0, 0], inertia: {xx: I2, yy: I2, zz: I2}}
+  b3: {mass: m3, com: [c3, 0, 0], inertia: {yy: I3, zz: I3, xy: I3}}
+  b4: {mass: m4, com: [0, 0, c3], inertia: {xx: I4, zz: I4}}
+joints:
+  j1: {type: revolute, parent: ground, child: b1, axis: z, coordinate: q1,
+       motor: {rotor_inertia: 0.002 kg*m^2, gear_ratio: 50}}
+  j2: {type: revolute, parent: b1, child: b2, axis: y, origin: [0, 0, l1], coordinate: q2}
+  j3: {type: prismatic, parent: b2, child: b3, axis: x, origin: [l2, 0, 0], coordinate: d3}
+  j4: {type: revolute, parent: b3, child: b4, axis: x, coordinate: q4}
+generalized_forces: {q1: tau1, d3: F3}
+"""
+
+
+def test_serial_route_checks_dimensions_on_monomials(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A large serial arm with units (a prismatic joint, a motor whose rotor inertia is a number): every
+    term agrees, checked on the equations with H's and C's entries as their monomials (no trigonometric
+    factor, nothing written out), as before on H's entries written out."""
+    from tutgen.engine import pipeline
+
+    seen: list[sp.MatrixBase] = []
+    original = pipeline.dimension_checks
+
+    def recording(system, derivation):  # type: ignore[no-untyped-def]
+        seen.append(derivation.equations_of_motion)
+        return original(system, derivation)
+
+    monkeypatch.setattr(pipeline, "dimension_checks", recording)
+    system = load_system_text(SERIAL_WITH_UNITS, "arm.yaml")
+    d = derive(system)
+    [check] = [c for c in d.checks if c.name == "dimensional_consistency"]
+    assert check.passed and check.detail == "every term agrees in the equations for 'q1', 'q2', 'd3', 'q4'"
+    [sized] = seen
+    for e in sized:  # the coefficients of the accelerations: H's entries, as monomials
+        assert all(not e.coeff(c.qdd).has(sp.sin, sp.cos) for c in system.coordinates), e
+    assert any(e.coeff(c.qdd) != 0 for e in sized for c in system.coordinates)

@@ -246,6 +246,25 @@ class SerialDynamics:
             rows[i].append(self.rates[j] * self.rates[k] * inner)
         return [sp.Add(*r) for r in rows]
 
+    def mass_dimension_terms(self) -> list[list[sp.Expr]]:
+        """For the dimensional check without H's entries written out: each H_ij as the sum of the distinct
+        monomials of its coefficients, without their numbers and trigonometric factors (as
+        :meth:`coriolis_dimension_terms` for C). A coefficient that is a number alone (a motor's rotor
+        inertia given as a number) stands as the number 2, which the check, like any number but 1 and -1,
+        takes to be of unknown dimension, as it took the number itself."""
+        gens = self.exact.algebra.gens
+        out: list[list[sp.Expr]] = []
+        for row in self.exact.h:
+            out.append([])
+            for p in row:
+                monomials = sorted({m for c in p.terms.values() for m in c})
+                terms = [
+                    sp.Mul(*[gens[g] ** e for g, e in enumerate(m) if e]) if any(m) else sp.Integer(2)
+                    for m in monomials
+                ]
+                out[-1].append(sp.Add(*terms))
+        return out
+
     @cached_property
     def christoffel(self) -> dict[tuple[int, int, int], sp.Expr]:
         return {key: h.to_expr() for key, h in self.christoffel_polys.items()}
