@@ -422,6 +422,7 @@ class _Marker(ScalarMarking):
             return None
         if any(not isinstance(row, list) or len(row) != n for row, n in zip(answer, shape, strict=True)):
             return None
+        self.allow_answer_as_long_as(max((str(v) for row in result for v in row), key=len, default=""))
         try:
             with answer_deadline(self.ref.answer_timeout):
                 correct = [[self.result_expr(v) for v in row] for row in result]

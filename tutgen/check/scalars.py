@@ -37,7 +37,7 @@ from tutgen.check.numeric import value_of_number
 from tutgen.check.verdicts import EntryResult, Reference, Status
 from tutgen.errors import SpecError
 from tutgen.render.jsonout import expr_text
-from tutgen.spec.expr import ExprError, number_to_rational, parse_expression
+from tutgen.spec.expr import MAX_LENGTH, ExprError, number_to_rational, parse_expression
 from tutgen.spec.loader import KeyPath
 from tutgen.spec.units import Dimension, parse_quantity, parse_unit
 
@@ -87,6 +87,8 @@ class ScalarMarking:
         self.sheet = sheet
         self.ref = ref
         self.errors: list[SpecError] = []
+        #: the longest answer text read for the entry being marked (see :meth:`allow_answer_as_long_as`)
+        self.answer_limit = MAX_LENGTH
 
     # -- reading ------------------------------------------------------------------------------
 
@@ -97,10 +99,16 @@ class ScalarMarking:
         loc = self.sheet.source.key_location(keypath) if key else self.sheet.location(keypath)
         self.errors.append(SpecError(loc, message, hint))
 
+    def allow_answer_as_long_as(self, result: Any) -> None:
+        """An answer may be as long as twice the text of the result it answers (a large arm's Christoffel
+        symbol copied from tutgen's own JSON runs to thousands of characters), and never shorter than
+        the spec grammar's limit: the limit stays a bound on what a hostile file makes tutgen read."""
+        self.answer_limit = max(MAX_LENGTH, 2 * len(str(result)))
+
     def parseanswer_text(self, text: str, keypath: KeyPath, offset: int = 0) -> sp.Expr | None:
         rewritten = ascii_answer(text)  # θ̇₁² as theta1_dot**2, 2 m g as 2*m*g
         try:
-            expr = parse_expression(rewritten.text, self.ref.symbols)
+            expr = parse_expression(rewritten.text, self.ref.symbols, max_length=self.answer_limit)
         except ExprError as exc:
             if exc.message.startswith("unknown name"):
                 raise UnknownName(exc.message + (f" ({exc.hint})" if exc.hint else "")) from None
@@ -155,8 +163,8 @@ class ScalarMarking:
             return number_to_rational(value)
         text = str(value)
         cache = _result_cache.setdefault(self.ref, {})
-        if text not in cache:
-            cache[text] = parse_expression(text, self.ref.symbols)
+        if text not in cache:  # tutgen's own text, however long (a large arm's Christoffel symbol): no length limit
+            cache[text] = parse_expression(text, self.ref.symbols, max_length=None)
         return cache[text]
 
     # -- items --------------------------------------------------------------------------------
@@ -197,6 +205,7 @@ class ScalarMarking:
             if answer is result:
                 return self.right(path, keypath, answer, result, "exact: the same truth value")
             return self.wrong(path, keypath, answer, result, f"expected {str(result).lower()}")
+        self.allow_answer_as_long_as(result)
         if field_name == "equations_of_motion":
             return self.equation(answer, keypath, result, path)
         correct = self.result_expr(result)

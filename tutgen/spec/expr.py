@@ -538,13 +538,18 @@ class ExpressionParser:
             raise ExprError(_too_large_message(), offset)
 
 
-def parse_expression(text: str | int | float, symbols: Mapping[str, sp.Symbol | sp.Expr]) -> sp.Expr:
+def parse_expression(
+    text: str | int | float, symbols: Mapping[str, sp.Symbol | sp.Expr], *, max_length: int | None = MAX_LENGTH
+) -> sp.Expr:
     """Parse a spec expression into a sympy expression, exactly, without evaluating any code.
 
     ``text`` is an expression string, or a YAML number (an int becomes ``sp.Integer``, a float
     the exact rational of its ``repr``). Names are looked up in ``symbols`` (exact,
     case-sensitive), then :data:`CONSTANTS`, then :data:`FUNCTIONS`. Raises :class:`ExprError`
     (with the offset of the offending token and, where useful, a hint) for anything else.
+    ``max_length``: the longest text read (:data:`MAX_LENGTH`, the limit of what a user writes); None
+    for text tutgen wrote itself (a large arm's result in the JSON runs to tens of thousands of
+    characters), whose nesting is still limited by :data:`MAX_DEPTH`.
     """
     if isinstance(text, bool):
         raise ExprError("expected an expression, found a boolean")
@@ -552,6 +557,6 @@ def parse_expression(text: str | int | float, symbols: Mapping[str, sp.Symbol | 
         return number_to_rational(text)
     if not isinstance(text, str):
         raise ExprError(f"expected an expression, found {_kind_of(text)}")
-    if len(text) > MAX_LENGTH:
-        raise ExprError(f"the expression is too long ({len(text)} characters; the limit is {MAX_LENGTH})", MAX_LENGTH)
+    if max_length is not None and len(text) > max_length:
+        raise ExprError(f"the expression is too long ({len(text)} characters; the limit is {max_length})", max_length)
     return ExpressionParser(text, symbols).parse()
