@@ -360,23 +360,23 @@ def test_shell_completion_script_and_completions() -> None:
 
 def test_cli_sizes_sympys_cache_before_sympy_is_imported() -> None:
     """sympy reads SYMPY_CACHE_SIZE once, when it is first imported: a command sizes the cache for its
-    thousands of expressions (issue 17) and keeps a size the user set."""
+    thousands of expressions (issue 17) and keeps a size the user set; numpy gets one BLAS thread."""
     import os
     import subprocess
     import sys
 
     probe = (
-        "import sys; from tutgen.cli import main; assert 'sympy' not in sys.modules; main.prepare_sympy_cache(); "
-        "import sympy.core.cache as c; print(c.SYMPY_CACHE_SIZE)"  # the size sympy read
+        "import os, sys; from tutgen.cli import main; assert 'sympy' not in sys.modules; main.prepare_environment(); "
+        "import sympy.core.cache as c; print(c.SYMPY_CACHE_SIZE, os.environ['OPENBLAS_NUM_THREADS'])"  # as read
     )
-    env = {k: v for k, v in os.environ.items() if k != "SYMPY_CACHE_SIZE"}
+    env = {k: v for k, v in os.environ.items() if k not in ("SYMPY_CACHE_SIZE", "OPENBLAS_NUM_THREADS")}
     out = subprocess.run([sys.executable, "-c", probe], env=env, capture_output=True, text=True, check=True)
-    assert out.stdout.strip() == "10000"
+    assert out.stdout.split() == ["10000", "1"]
     out = subprocess.run(
         [sys.executable, "-c", probe],
-        env={**env, "SYMPY_CACHE_SIZE": "123"},
+        env={**env, "SYMPY_CACHE_SIZE": "123", "OPENBLAS_NUM_THREADS": "4"},
         capture_output=True,
         text=True,
         check=True,
     )
-    assert out.stdout.strip() == "123"
+    assert out.stdout.split() == ["123", "4"]

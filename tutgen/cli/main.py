@@ -70,12 +70,19 @@ app.command(name="code", cls=Command)(code.code)  # tutgen/cli/code.py
 #: had fallen out of it. 10 000: about 7 % less CPU for a sheet of 20 variants, 9 MB more memory (issue 17)
 SYMPY_CACHE_SIZE = 10_000
 
+#: What the commands set in their environment before they import sympy and numpy, unless the user set it:
+#: sympy's cache (above), and one BLAS thread (tutgen's numbers are 3 x 3 to 12 x 12 matrices; OpenBLAS's
+#: pool of threads cost about 0.08 s of CPU per command, and a sheet's workers competed with it)
+ENVIRONMENT = {"SYMPY_CACHE_SIZE": str(SYMPY_CACHE_SIZE), "OPENBLAS_NUM_THREADS": "1"}
 
-def prepare_sympy_cache() -> None:
-    """Give sympy's cache :data:`SYMPY_CACHE_SIZE` entries, unless the user set ``SYMPY_CACHE_SIZE`` or sympy
-    is imported already (its cache is made then). Results never depend on it, only the time they take."""
-    if "sympy" not in sys.modules:
-        os.environ.setdefault("SYMPY_CACHE_SIZE", str(SYMPY_CACHE_SIZE))
+
+def prepare_environment() -> None:
+    """Set :data:`ENVIRONMENT` where the user did not, before sympy or numpy is imported (each reads its
+    variable once, then). Results never depend on it, only the time they take."""
+    if "sympy" in sys.modules or "numpy" in sys.modules:
+        return
+    for name, value in ENVIRONMENT.items():
+        os.environ.setdefault(name, value)
 
 
 #: the collector's first threshold (Python's default is 700): sympy and the exact polynomials allocate
@@ -86,14 +93,14 @@ GC_THRESHOLD = 10_000
 
 def run() -> None:
     """Console-script entry point. sympy is imported inside the commands: its cache is sized first
-    (:func:`prepare_sympy_cache`).
+    (:func:`prepare_environment`).
 
     The cyclic garbage collector runs less often (:data:`GC_THRESHOLD`), and when the command is done,
     every object left is frozen (``gc.freeze``) so that the interpreter's exit does not traverse them all
     once more (0.15 s after a large arm's derivation); reference counting still frees them, and nothing of
     tutgen's needs a collection to be written out (files are closed when written).
     """
-    prepare_sympy_cache()
+    prepare_environment()
     gc.set_threshold(GC_THRESHOLD, *gc.get_threshold()[1:])
     try:
         app(prog_name="tutgen")
