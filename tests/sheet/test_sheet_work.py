@@ -40,3 +40,30 @@ def test_each_unit_draws_its_figure_and_free_bodies_once(monkeypatch: pytest.Mon
     # three units per problem: the nominal values and each variant's (whose values differ here)
     assert {k: v for k, v in drawn.items() if "free body" not in k} == {str(p.path): 3 for p in sheet.problems}
     assert drawn["cart (free body)"] == drawn["pendulum (free body)"] == 3
+
+
+def test_units_are_dealt_out_a_problem_at_a_time() -> None:
+    """Every unit once; with a few workers all of a problem's units in one piece (one worker builds its
+    variants, its tables of printed texts serving each next one), the largest pieces first; with many
+    workers (a cluster) a problem's units split so that every worker has work."""
+    from tutgen.sheet.build import ProblemBase, Shared, plan_units, unit_pieces
+
+    sheet = load_sheet(SPECS / "tutorial-1" / "sheet.yaml")
+    derivations, _ = derive_problems(sheet)
+    problems = tuple(
+        ProblemBase(p.number, p.key, str(p.path), p.text, d, p.marking)
+        for p, d in zip(sheet.problems, derivations, strict=True)
+    )
+    shared = Shared(header={}, problems=problems, formats=("md",), seed=1, method=None, has_variants=True)
+    units = plan_units(shared, variant_ids(40))
+    for workers in (1, 2, 64):
+        pieces = unit_pieces(shared, units, workers)
+        dealt = [u for piece in pieces for u in piece]
+        assert sorted(dealt, key=units.index) == list(units)  # each unit exactly once
+        assert all(len({u.problem for u in piece}) == 1 for piece in pieces)
+        if workers <= 2:
+            assert len(pieces) == len(problems)
+    few = unit_pieces(shared, units, 2)
+    assert problems[few[0][0].problem].key.startswith("p08")  # the spatial RR arm prints the most
+    assert problems[few[-1][0].problem].key.startswith("p10")  # no parameters: one unit
+    assert len(unit_pieces(shared, units, 64)) > len(problems)

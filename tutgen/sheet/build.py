@@ -224,6 +224,47 @@ def build_unit(shared: Shared, unit: Unit) -> UnitResult:
     return UnitResult(view, d.system, extra, results, marks, concrete, fresh, t_derive, total - t_derive, figure=figure)
 
 
+def unit_pieces(shared: Shared, units: Sequence[Unit], workers: int) -> list[tuple[Unit, ...]]:
+    """The units as the tasks of the workers: every unit of a problem in one piece, so that one worker
+    builds all of that problem's variants (its printer's texts, arranged terms and sympy's cache serve
+    every variant after the first: a sheet of 100 variants took 13 % less CPU than with the units dealt
+    out one by one), split only where a problem has more than its share of a pool twice the size of
+    ``workers`` (a cluster). The largest pieces first (units times the size of the problem's
+    equations), so that the last one to finish is a small one. The results do not depend on the pieces."""
+    import sympy as sp
+
+    from tutgen.render.size import count_ops_upto
+
+    by_problem: dict[int, list[Unit]] = {}
+    for u in units:
+        by_problem.setdefault(u.problem, []).append(u)
+    share = max(1, -(-len(units) // (2 * max(workers, 1))))  # ceil
+    pieces = [tuple(g[i : i + share]) for _, g in sorted(by_problem.items()) for i in range(0, len(g), share)]
+
+    sizes: dict[int, int] = {}
+
+    def size(problem: int) -> int:
+        """How much a unit of the problem prints: its steps' equations and its joint reactions (the keys'
+        largest entries), in operations (the tutorial's order of cost: p08, p05, p07, p03, ...)."""
+        if problem not in sizes:
+            d = shared.problems[problem].derivation
+            sides = [x for st in d.steps for eq in st.equations for x in (eq.lhs, eq.rhs) if isinstance(x, sp.Basic)]
+            ne = d.newton_euler
+            reactions = [x for r in ne.reactions for x in (*r.force, *r.moment)] if ne is not None else []
+            sizes[problem] = 1 + count_ops_upto(sides, 10**6) + count_ops_upto(reactions, 10**6)
+        return sizes[problem]
+
+    def weight(piece: tuple[Unit, ...]) -> int:
+        return len(piece) * size(piece[0].problem)
+
+    return sorted(pieces, key=weight, reverse=True)  # stable: equal weights keep the sheet's order
+
+
+def build_units(shared: Shared, piece: tuple[Unit, ...]) -> list[UnitResult]:
+    """:func:`build_unit` of each unit of a piece, in order; runs in a worker."""
+    return [build_unit(shared, u) for u in piece]
+
+
 def build_job(shared: Shared, job: Job) -> JobResult:
     """Every file of one sheet (nominal or a variant), from its problems' units (``shared.units``,
     built by :func:`build_unit`); runs in a worker."""
@@ -387,8 +428,12 @@ def build_sheet(
     # the workers in small pieces; then every sheet from them (templates only), in the order of the jobs
     units = plan_units(shared, variants)
     _warm_imports()  # imported once here, before a pool forks its workers
-    done = _ticks(len(units), 1 + len(variants), on_done)
-    unit_results = run.map(build_unit, shared, units, done)
+    pieces = unit_pieces(shared, units, run.workers)
+    done = _ticks(len(pieces), 1 + len(variants), on_done)
+    built: dict[Unit, UnitResult] = {}
+    for piece, results_of_piece in zip(pieces, run.map(build_units, shared, pieces, done), strict=True):
+        built.update(zip(piece, results_of_piece, strict=True))
+    unit_results = [built[u] for u in units]
     shared = dataclasses.replace(
         shared, units={unit_key(shared, u.problem, u.variant): r for u, r in zip(units, unit_results, strict=True)}
     )
