@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
 from typing import Any, ClassVar
 
 import sympy as sp
@@ -287,12 +288,17 @@ class TexPrinter:
         self._printed = _printed(frozenset(self.names.items()), self._settings)
 
     def __call__(self, expr: object) -> str:
-        if not isinstance(expr, sp.Basic):  # a float, or a mutable matrix: not remembered
-            return self._print(expr)
-        key = ("", expr)
+        return self._remembered("", expr, self._print)
+
+    def _remembered(self, kind: str, expr: object, make: Callable[[Any], str]) -> str:
+        """``make(expr)``, looked up first among this printer's texts of that ``kind``; a float or a
+        mutable matrix is not remembered."""
+        if not isinstance(expr, sp.Basic):
+            return make(expr)
+        key = (kind, expr)
         text = self._printed.get(key)
         if text is None:
-            text = self._printed[key] = self._print(expr)
+            text = self._printed[key] = make(expr)
         return text
 
     def _print(self, expr: object) -> str:
@@ -324,13 +330,7 @@ class TexPrinter:
     def ordered(self, expr: sp.Expr) -> str:
         """An equation of motion's side as a teacher writes it (tutgen.render.order.equation_terms):
         accelerations in coordinate order, velocity products, the rest; each bracket with a positive lead."""
-        if not isinstance(expr, sp.Basic):
-            return self._ordered(expr)
-        key = ("ordered", expr)
-        text = self._printed.get(key)
-        if text is None:
-            text = self._printed[key] = self._ordered(expr)
-        return text
+        return self._remembered("ordered", expr, self._ordered)
 
     def _ordered(self, expr: sp.Expr) -> str:
         found = order.arranged_terms(expr, self.levels) if isinstance(expr, sp.Expr) else None
