@@ -62,10 +62,7 @@ def grammar_text(expr: sp.Basic) -> str:
     'm0 + m12 + m15 + m18 + m21 + m'
     """
     if not lower_bound_exceeds([expr], LEX_BUDGET):
-        try:
-            return _lex_text(expr)
-        except TypeError:  # unhashable (a mutable matrix): printed, not remembered
-            return str(_LEX.doprint(expr))
+        return _lex_text(expr)
     return _text(expr)[0]
 
 
