@@ -34,7 +34,7 @@ from tutgen.check.limits import AnswerTimeLimit, answer_deadline
 from tutgen.check.matrices import matrix_finding
 from tutgen.check.names import Path, entry_name, field_of, is_per_coordinate
 from tutgen.check.numeric import SEED, TRIALS
-from tutgen.check.scalars import ScalarMarking, UnknownName, Unreadable, answer_text
+from tutgen.check.scalars import ScalarMarking, UnknownName, Unreadable, answer_limit, answer_text
 from tutgen.check.steady import SteadyMarking
 from tutgen.check.verdicts import (
     ASKED_RESULTS,
@@ -422,12 +422,12 @@ class _Marker(ScalarMarking):
             return None
         if any(not isinstance(row, list) or len(row) != n for row, n in zip(answer, shape, strict=True)):
             return None
-        self.allow_answer_as_long_as(max((str(v) for row in result for v in row), key=len, default=""))
+        limit = answer_limit(max((str(v) for row in result for v in row), key=len, default=""))
         try:
             with answer_deadline(self.ref.answer_timeout):
                 correct = [[self.result_expr(v) for v in row] for row in result]
                 given = [
-                    [self.read(v, (), symbolic=bool(c.free_symbols)).expr for v, c in zip(row, crow, strict=True)]  # type: ignore[union-attr]
+                    [self.read(v, (), bool(c.free_symbols), limit).expr for v, c in zip(row, crow, strict=True)]  # type: ignore[union-attr]
                     for row, crow in zip(answer, correct, strict=True)
                 ]
                 return matrix_finding(given, correct, self.ref.state, self.ref.forces)

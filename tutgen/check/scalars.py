@@ -41,7 +41,7 @@ from tutgen.spec.expr import MAX_LENGTH, ExprError, number_to_rational, parse_ex
 from tutgen.spec.loader import KeyPath
 from tutgen.spec.units import Dimension, parse_quantity, parse_unit
 
-__all__ = ["NUMBER_RE", "ScalarMarking", "UnknownName", "Unreadable", "answer_text"]
+__all__ = ["NUMBER_RE", "ScalarMarking", "UnknownName", "Unreadable", "answer_limit", "answer_text"]
 
 #: Results measured from a datum: an answer off by a constant is right (a potential energy's zero is a
 #: choice; so is, with it, the Lagrangian's).
@@ -51,6 +51,13 @@ NUMBER_RE = re.compile(r"\s*[-+]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][-+]?[0-
 
 #: Parsed result expressions, per reference (for as long as the reference lives).
 _result_cache: weakref.WeakKeyDictionary[Reference, dict[str, sp.Expr]] = weakref.WeakKeyDictionary()
+
+
+def answer_limit(result: Any) -> int:
+    """The longest answer text read for ``result``: twice the text of the result it answers (a large arm's
+    Christoffel symbol copied from tutgen's own JSON runs to thousands of characters), and never less than
+    the spec grammar's limit, so that the limit stays a bound on what a hostile file makes tutgen read."""
+    return max(MAX_LENGTH, 2 * len(str(result)))
 
 
 class UnknownName(Exception):
@@ -87,8 +94,6 @@ class ScalarMarking:
         self.sheet = sheet
         self.ref = ref
         self.errors: list[SpecError] = []
-        #: the longest answer text read for the entry being marked (see :meth:`allow_answer_as_long_as`)
-        self.answer_limit = MAX_LENGTH
 
     # -- reading ------------------------------------------------------------------------------
 
@@ -99,16 +104,11 @@ class ScalarMarking:
         loc = self.sheet.source.key_location(keypath) if key else self.sheet.location(keypath)
         self.errors.append(SpecError(loc, message, hint))
 
-    def allow_answer_as_long_as(self, result: Any) -> None:
-        """An answer may be as long as twice the text of the result it answers (a large arm's Christoffel
-        symbol copied from tutgen's own JSON runs to thousands of characters), and never shorter than
-        the spec grammar's limit: the limit stays a bound on what a hostile file makes tutgen read."""
-        self.answer_limit = max(MAX_LENGTH, 2 * len(str(result)))
-
-    def parseanswer_text(self, text: str, keypath: KeyPath, offset: int = 0) -> sp.Expr | None:
+    def parseanswer_text(self, text: str, keypath: KeyPath, offset: int = 0, limit: int = MAX_LENGTH) -> sp.Expr | None:
+        """An answer's expression; ``limit``: the longest text read (:func:`answer_limit` of its result)."""
         rewritten = ascii_answer(text)  # θ̇₁² as theta1_dot**2, 2 m g as 2*m*g
         try:
-            expr = parse_expression(rewritten.text, self.ref.symbols, max_length=self.answer_limit)
+            expr = parse_expression(rewritten.text, self.ref.symbols, max_length=limit)
         except ExprError as exc:
             if exc.message.startswith("unknown name"):
                 raise UnknownName(exc.message + (f" ({exc.hint})" if exc.hint else "")) from None
@@ -116,7 +116,7 @@ class ScalarMarking:
             raise Unreadable(SpecError(loc, exc.message, exc.hint)) from None
         return expr.xreplace(self.ref.values) if self.ref.values else expr
 
-    def read(self, answer: Any, keypath: KeyPath, symbolic: bool = False) -> _Parsed | None:
+    def read(self, answer: Any, keypath: KeyPath, symbolic: bool = False, limit: int = MAX_LENGTH) -> _Parsed | None:
         """An answer scalar as sympy. ``symbolic``: the result has symbols, so ``2 m g`` whose words
         are all names of the problem is the product ``2*m*g``, not 2 metres followed by a word; a
         number with a unit otherwise stays a quantity (``2 m`` against a length is 2 metres)."""
@@ -136,14 +136,14 @@ class ScalarMarking:
             quantity = parse_quantity(text)
         except ExprError as exc:  # a number and then no unit: perhaps a product (0.2109 θ̇², 2 m g)
             try:
-                expr = self.parseanswer_text(text, keypath)
+                expr = self.parseanswer_text(text, keypath, limit=limit)
             except (Unreadable, UnknownName):
                 loc = self.sheet.source.expr_location(keypath, exc.offset)
                 raise Unreadable(SpecError(loc, exc.message, exc.hint)) from None
             return _Parsed(expr) if expr is not None else None
         if quantity is not None and symbolic:
             try:
-                return _Parsed(self.parseanswer_text(text, keypath))  # type: ignore[arg-type]
+                return _Parsed(self.parseanswer_text(text, keypath, limit=limit))  # type: ignore[arg-type]
             except (Unreadable, UnknownName):
                 pass  # not an expression in the problem's names: the quantity it reads as
         if quantity is not None:
@@ -151,7 +151,7 @@ class ScalarMarking:
             assert match is not None
             factor, _ = parse_unit(quantity.unit)
             return _Parsed(quantity.value, match.group().strip(), factor, quantity.dimension)
-        expr = self.parseanswer_text(text, keypath)
+        expr = self.parseanswer_text(text, keypath, limit=limit)
         if expr is None:
             return None
         literal = text.strip() if NUMBER_RE.fullmatch(text) else None
@@ -205,12 +205,11 @@ class ScalarMarking:
             if answer is result:
                 return self.right(path, keypath, answer, result, "exact: the same truth value")
             return self.wrong(path, keypath, answer, result, f"expected {str(result).lower()}")
-        self.allow_answer_as_long_as(result)
         if field_name == "equations_of_motion":
             return self.equation(answer, keypath, result, path)
         correct = self.result_expr(result)
         try:
-            parsed = self.read(answer, keypath, symbolic=bool(correct.free_symbols))
+            parsed = self.read(answer, keypath, symbolic=bool(correct.free_symbols), limit=answer_limit(result))
         except UnknownName as exc:
             return self.wrong(path, keypath, answer, result, str(exc))
         except Unreadable as exc:
@@ -350,7 +349,7 @@ class ScalarMarking:
         """An equation of motion: ``lhs = rhs`` or an expression equal to 0, up to moving terms across the
         ``=`` and a constant factor in [MIN_SCALE, MAX_SCALE] (unless the key turns scaling off)."""
         try:
-            given = self.read_equation(answer, keypath)
+            given = self.read_equation(answer, keypath, answer_limit(result))
         except UnknownName as exc:
             return self.wrong(path, keypath, answer, result, str(exc))
         except Unreadable as exc:
@@ -405,7 +404,7 @@ class ScalarMarking:
                 best, agreeing = k, count
         return given if best == 1 else sp.expand(given / best)
 
-    def read_equation(self, answer: Any, keypath: KeyPath) -> sp.Expr | None:
+    def read_equation(self, answer: Any, keypath: KeyPath, limit: int = MAX_LENGTH) -> sp.Expr | None:
         if isinstance(answer, str) and "=" in answer:
             text = answer.replace("==", "=")
             if text.count("=") != 1:
@@ -413,12 +412,12 @@ class ScalarMarking:
                 raise Unreadable(SpecError(loc, "an equation has one '=': write 'lhs = rhs'"))
             lhs_text, rhs_text = text.split("=")
             offset = answer.index("=") + (2 if "==" in answer else 1)
-            lhs = self.parseanswer_text(lhs_text, keypath)
-            rhs = self.parseanswer_text(rhs_text, keypath, offset)
+            lhs = self.parseanswer_text(lhs_text, keypath, limit=limit)
+            rhs = self.parseanswer_text(rhs_text, keypath, offset, limit)
             if lhs is None or rhs is None:
                 return None
             return lhs - rhs
-        parsed = self.read(answer, keypath, symbolic=True)
+        parsed = self.read(answer, keypath, symbolic=True, limit=limit)
         return None if parsed is None else parsed.expr
 
 
