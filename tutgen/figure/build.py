@@ -40,6 +40,7 @@ from tutgen.figure.geometry import prim_box, segments_cross
 from tutgen.figure.labels import place_labels
 from tutgen.figure.pose import Pose
 from tutgen.figure.scene import Box, Drawing, Point, Polyline, Primitive, Stroke
+from tutgen.memo import ByIdentity
 from tutgen.model.system import System
 
 #: A link seen shorter than this fraction of its length (an oblique view looking along it) asks for
@@ -53,21 +54,15 @@ BETTER = 0.2
 #: the JSON entry, the SVG beside the Markdown, the free-body step's check of the view), and a
 #: Drawing is immutable, so each is drawn once. The oldest entry goes past :data:`DRAWN_MAX` (a sheet
 #: draws each variant's own system once).
-_DRAWN: dict[int, tuple[System, Drawing]] = {}
 DRAWN_MAX = 64
+_DRAWN: ByIdentity[System, Drawing] = ByIdentity(DRAWN_MAX)
 
 
 def draw_system(system: System) -> Drawing:
     """The schematic of ``system``, drawn once per system object in a process (see
     :func:`_draw_system` for how, and :data:`_DRAWN`)."""
-    hit = _DRAWN.get(id(system))
-    if hit is not None and hit[0] is system:
-        return hit[1]
-    drawing = _draw_system(system)
-    while len(_DRAWN) >= DRAWN_MAX:
-        _DRAWN.pop(next(iter(_DRAWN)))
-    _DRAWN[id(system)] = (system, drawing)
-    return drawing
+    drawing = _DRAWN.get(system)
+    return drawing if drawing is not None else _DRAWN.put(system, _draw_system(system))
 
 
 def drawn_values(system: System) -> dict[sp.Symbol, float]:

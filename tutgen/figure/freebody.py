@@ -36,6 +36,7 @@ from tutgen.figure.labels import place_labels
 from tutgen.figure.pose import Pose
 from tutgen.figure.scene import Box, Drawing, Point, Primitive
 from tutgen.figure.texlabel import is_safe_tex, name_tex, word_tex
+from tutgen.memo import ByIdentity
 from tutgen.model.system import Body, Endpoint, JointKind, System
 
 #: Arrow length of a force on the page (cm), the size a free body is scaled to, a slider block's size.
@@ -90,19 +91,17 @@ def free_body_diagram(system: System, body_name: str, forces: Sequence[BodyForce
     its section, its JSON entry and the SVG file beside it), as :func:`tutgen.figure.build.draw_system`."""
     _known(system, body_name)
     key = (body_name, tuple(forces) if forces is not None else None)
-    hit = _DIAGRAMS.get(id(system))
-    if hit is None or hit[0] is not system:
-        while len(_DIAGRAMS) >= DRAWN_MAX:
-            _DIAGRAMS.pop(next(iter(_DIAGRAMS)))
-        hit = _DIAGRAMS[id(system)] = (system, {})
-    drawing = hit[1].get(key)
+    drawn = _DIAGRAMS.get(system)
+    if drawn is None:
+        drawn = _DIAGRAMS.put(system, {})
+    drawing = drawn.get(key)
     if drawing is None:
-        drawing = hit[1][key] = _FreeBodyBuilder(system, body_name, forces).build()
+        drawing = drawn[key] = _FreeBodyBuilder(system, body_name, forces).build()
     return drawing
 
 
-#: The diagrams drawn in this process: per system (by identity, kept), by (body, forces).
-_DIAGRAMS: dict[int, tuple[System, dict[tuple[str, tuple[BodyForce, ...] | None], Drawing]]] = {}
+#: The diagrams drawn in this process: per system (by identity), by (body, forces).
+_DIAGRAMS: ByIdentity[System, dict[tuple[str, tuple[BodyForce, ...] | None], Drawing]] = ByIdentity(DRAWN_MAX)
 
 
 def _known(system: System, body_name: str) -> Body:

@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from tutgen.engine.derivation import Derivation
+from tutgen.memo import ByIdentity
 from tutgen.model.marking import Marking
 from tutgen.model.system import Ask
 from tutgen.render.blocks import prose, rich
@@ -97,17 +98,11 @@ def as_set(system: Any) -> Any:
 
     if not system.question_title:
         return system
-    hit = _AS_SET.get(id(system))
-    if hit is not None and hit[0] is system:
-        return hit[1]
-    shown = dataclasses.replace(system, title=system.question_title)
-    while len(_AS_SET) >= 64:
-        _AS_SET.pop(next(iter(_AS_SET)))
-    _AS_SET[id(system)] = (system, shown)
-    return shown
+    shown = _AS_SET.get(system)
+    return shown if shown is not None else _AS_SET.put(system, dataclasses.replace(system, title=system.question_title))
 
 
-_AS_SET: dict[int, tuple[Any, Any]] = {}
+_AS_SET: ByIdentity[Any, Any] = ByIdentity(64)
 
 
 def _figure(system: Any) -> dict[str, Any]:

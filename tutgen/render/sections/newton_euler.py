@@ -19,6 +19,7 @@ from tutgen.engine.ne_types import (
     PlanarNewtonEuler,
 )
 from tutgen.figure.freebody import BodyForce, Frame
+from tutgen.memo import ByIdentity
 from tutgen.model.system import Ask, Coordinate, JointKind
 from tutgen.render.blocks import (
     SolutionContext,
@@ -541,22 +542,19 @@ def free_bodies(d: Derivation) -> list[dict[str, Any]]:
     ne = d.newton_euler
     if ne is None or ne.planar is None or Ask.EQUATIONS_OF_MOTION not in d.system.ask:
         return []
-    hit = _DRAWN.get(id(d))
-    if hit is not None and hit[0] is d:  # drawn for this derivation already (the section, then the files)
-        return [dict(v) for v in hit[1]]
-    coords = {c.name: c.latex for c in d.system.coordinates}
-    forces = {b.body: diagram_forces(b, coords) for b in ne.planar.balances}
-    # only the bodies the step has a balance for (a massless body has none)
-    views = [v for v in free_body_views(d.system, forces) if v["body"] in forces]
-    while len(_DRAWN) >= 16:
-        _DRAWN.pop(next(iter(_DRAWN)))
-    _DRAWN[id(d)] = (d, views)
+    views = _VIEWS.get(d)  # made for this derivation already (the section, then the files)
+    if views is None:
+        coords = {c.name: c.latex for c in d.system.coordinates}
+        forces = {b.body: diagram_forces(b, coords) for b in ne.planar.balances}
+        # only the bodies the step has a balance for (a massless body has none)
+        views = _VIEWS.put(d, [v for v in free_body_views(d.system, forces) if v["body"] in forces])
     return [dict(v) for v in views]
 
 
-#: the free bodies drawn for the last few derivations (by identity): a solution written to a file draws them
-#: for its Newton–Euler step and again for the SVGs beside it, a sheet's unit for its step and its assets
-_DRAWN: dict[int, tuple[Derivation, list[dict[str, Any]]]] = {}
+#: the free-body views made for the last few derivations: a solution written to a file asks for them for
+#: its Newton–Euler step and again for the SVGs beside it, a sheet's unit for its step and its assets (the
+#: diagrams themselves are remembered per system, tutgen.figure.freebody; their TikZ and SVG here)
+_VIEWS: ByIdentity[Derivation, list[dict[str, Any]]] = ByIdentity(16)
 
 
 def diagram_forces(b: PlanarBalance, coords: dict[str, str]) -> tuple[BodyForce, ...]:
