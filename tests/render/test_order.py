@@ -127,3 +127,31 @@ def test_a_square_free_coefficient_is_not_factored(monkeypatch) -> None:
     printed = TexPrinter(system)(m2 * r2)
     assert r"\right)^{2}" not in printed
     assert calls == []
+
+
+def test_a_variants_numeric_masses_are_not_factored(monkeypatch) -> None:
+    """A sheet's variant has every mass a number: no mass to gather the terms over, so no square is printed
+    and nothing is factored or decomposed to look for one (issue 17: p08's variants spent a fifth of their
+    time there). The printed text is what it was."""
+    import tutgen.render.order as order
+
+    calls: list[sp.Expr] = []
+    real_factor, real_sqf = sp.factor, sp.sqf_list
+
+    def counting(real):  # type: ignore[no-untyped-def]
+        def call(expr: sp.Expr, *args: object, **kwargs: object) -> object:
+            calls.append(expr)
+            return real(expr, *args, **kwargs)
+
+        return call
+
+    monkeypatch.setattr(order.sp, "factor", counting(real_factor))
+    monkeypatch.setattr(order.sp, "sqf_list", counting(real_sqf))
+    forget()
+    system, d, _ = solved(str(P08))
+    values = {p.symbol: sp.Rational(3 + i, 2) for i, p in enumerate(system.parameters) if p.name[:1] in "ml"}
+    h11 = d.mass_matrix[0, 0].xreplace(values)
+    printed = TexPrinter(system)(h11)
+    assert calls == []
+    assert r"\right)^{2}" not in printed
+    assert sp.expand(order.arranged(h11, order.levels_of(system)) - h11) == 0

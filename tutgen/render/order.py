@@ -350,8 +350,13 @@ def _perfect_squares(expr: sp.Expr, levels: _Levels) -> sp.Expr | None:
         groups.setdefault(mass, []).append(t / mass)
     terms: list[Term] = []
     found = False
+    if all(mass == 1 for mass in groups):  # no mass to gather over (a sheet's variant: every mass a number)
+        return None
     for mass in sorted(groups, key=lambda m: (m == 1, sp.default_sort_key(m))):
         coefficient = sp.Add(*groups[mass])
+        if mass == 1:  # what no mass multiplies is never printed as a square: its terms as they are
+            terms += _arrange([c for c in sp.Add.make_args(sp.expand(coefficient))], 0, levels)
+            continue
         try:
             factored = (
                 sp.factor(coefficient)
@@ -372,7 +377,7 @@ def _perfect_squares(expr: sp.Expr, levels: _Levels) -> sp.Expr | None:
             ),
             None,
         )
-        if mass != 1 and square is not None:
+        if square is not None:
             found = True
             rest = body / square
             _, base = positive_lead(square.base)  # (-a - b)^2 = (a + b)^2
