@@ -23,17 +23,18 @@ def test_each_unit_draws_its_figure_and_free_bodies_once(monkeypatch: pytest.Mon
     sheet = dataclasses.replace(sheet, problems=tuple(p for p in sheet.problems if p.key[:3] in ("p03", "p05")))
     derivations, _ = derive_problems(sheet)
     drawn: collections.Counter[str] = collections.Counter()
-    draw, diagram = figure_build._draw_system, freebody.free_body_diagram
+    draw, diagram = figure_build.drawn_by_reads, freebody.free_body_diagram
 
-    def counting_draw(system):  # type: ignore[no-untyped-def]
-        drawn[system.source] += 1
-        return draw(system)
+    def counting_draw(system, what, how):  # type: ignore[no-untyped-def]
+        if what == ("system",):  # asked of the drawings shared by values (tests/figure/test_drawn_by_reads.py)
+            drawn[system.source] += 1
+        return draw(system, what, how)
 
     def counting_diagram(system, body, forces=None):  # type: ignore[no-untyped-def]
         drawn[f"{body} (free body)"] += 1
         return diagram(system, body, forces)
 
-    monkeypatch.setattr(figure_build, "_draw_system", counting_draw)
+    monkeypatch.setattr(figure_build, "drawn_by_reads", counting_draw)
     monkeypatch.setattr(freebody, "free_body_diagram", counting_diagram)
     build = build_sheet(sheet, formats=("md", "tex"), variants=variant_ids(2), seed=3, derivations=derivations)
     assert any(name.endswith(".svg") for name, _ in build.files)

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 
 import numpy as np
 import sympy as sp
@@ -38,7 +39,7 @@ from tutgen.figure.axes import AxesDrawing
 from tutgen.figure.canvas import POSE_SIGNS
 from tutgen.figure.geometry import prim_box, segments_cross
 from tutgen.figure.labels import place_labels
-from tutgen.figure.pose import Pose
+from tutgen.figure.pose import Pose, reading
 from tutgen.figure.scene import Box, Drawing, Point, Polyline, Primitive, Stroke
 from tutgen.memo import ByIdentity
 from tutgen.model.system import System
@@ -58,11 +59,50 @@ DRAWN_MAX = 64
 _DRAWN: ByIdentity[System, Drawing] = ByIdentity(DRAWN_MAX)
 
 
+#: The drawings by what they are a function of: the system without its parameters' values (its
+#: :func:`_skeleton`, with what else the drawing is of), and the values of the parameters the drawing
+#: read (:func:`tutgen.figure.pose.reading`: a length, not a mass). A sheet's variants that differ in
+#: their masses share one drawing. The last :data:`DRAWN_MAX` keys are kept, and for each the last
+#: :data:`DRAWN_MAX` sets of values.
+_BY_READS: dict[tuple[object, ...], list[tuple[tuple[tuple[sp.Basic, object], ...], Drawing]]] = {}
+
+
 def draw_system(system: System) -> Drawing:
-    """The schematic of ``system``, drawn once per system object in a process (see
-    :func:`_draw_system` for how, and :data:`_DRAWN`)."""
+    """The schematic of ``system``, drawn once per system object in a process, and once for the
+    systems that differ only in values the drawing does not read (see :func:`_draw_system` for how, and
+    :data:`_DRAWN`, :data:`_BY_READS`)."""
     drawing = _DRAWN.get(system)
-    return drawing if drawing is not None else _DRAWN.put(system, _draw_system(system))
+    if drawing is None:
+        drawing = _DRAWN.put(system, drawn_by_reads(system, ("system",), _draw_system))
+    return drawing
+
+
+def _skeleton(system: System) -> System:
+    """``system`` with no parameter values (nor choices of them): what every variant of a sheet's problem
+    shares."""
+    params = tuple(dataclasses.replace(p, value=None, choices=None) for p in system.parameters)
+    return dataclasses.replace(system, parameters=params)
+
+
+def drawn_by_reads(system: System, what: tuple[object, ...], draw: Callable[[System], Drawing]) -> Drawing:
+    """``draw(system)``, or the drawing it made of a system that differs from this one only in the values
+    of parameters it did not read; ``what``: what else (hashable) the drawing is of."""
+    values = {p.symbol: p.value for p in system.parameters}
+    key = (_skeleton(system), *what)
+    seen = _BY_READS.pop(key, [])  # put back last: the most recent key is the last forgotten
+    while len(_BY_READS) >= DRAWN_MAX:
+        _BY_READS.pop(next(iter(_BY_READS)))
+    _BY_READS[key] = seen
+    for read, drawing in seen:
+        if all(values[symbol] == value for symbol, value in read):
+            return drawing
+    with reading() as symbols:
+        drawing = draw(system)
+    read = tuple((symbol, value) for symbol, value in values.items() if symbol in symbols)
+    if len(seen) >= DRAWN_MAX:
+        del seen[0]
+    seen.append((read, drawing))
+    return drawing
 
 
 def drawn_values(system: System) -> dict[sp.Symbol, float]:

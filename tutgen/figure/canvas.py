@@ -16,7 +16,7 @@ from collections.abc import Sequence
 import numpy as np
 import sympy as sp
 
-from tutgen.figure.pose import Numbers, Pose, Vec, close_loops, default_size
+from tutgen.figure.pose import Numbers, Pose, Vec, close_loops, default_size, read
 from tutgen.figure.scene import Box, Circle, Fill, Point, Polyline, Primitive, Stroke
 from tutgen.figure.texlabel import expr_tex, name_tex, word_tex
 from tutgen.model.figure import FigureConfig, FigureView
@@ -93,6 +93,7 @@ class Canvas:
                 if self._is_geometric(p.symbol):
                     self.sizes.append((p.name, table[p.symbol]))
         lengths = [v for sym, v in table.items() if self._is_geometric(sym)]
+        read(sym for sym in table if self._is_geometric(sym))  # the typical length: the scale, the displacements
         self.typical = max(lengths, default=1.0) or 1.0
         given_at = dict(cfg.at)
         at: list[tuple[str, float]] = []

@@ -29,7 +29,7 @@ from enum import StrEnum
 import numpy as np
 import sympy as sp
 
-from tutgen.figure.build import DRAWN_MAX, SystemBuilder
+from tutgen.figure.build import DRAWN_MAX, SystemBuilder, drawn_by_reads
 from tutgen.figure.canvas import TARGET_SIZE
 from tutgen.figure.geometry import prim_box
 from tutgen.figure.labels import place_labels
@@ -96,7 +96,9 @@ def free_body_diagram(system: System, body_name: str, forces: Sequence[BodyForce
         drawn = _DIAGRAMS.put(system, {})
     drawing = drawn.get(key)
     if drawing is None:
-        drawing = drawn[key] = _FreeBodyBuilder(system, body_name, forces).build()
+        drawing = drawn[key] = drawn_by_reads(
+            system, ("free body", *key), lambda s: _FreeBodyBuilder(s, body_name, forces).build()
+        )
     return drawing
 
 

@@ -5,6 +5,8 @@ drawing size of a symbolic length (:func:`default_size`), and every body frame a
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
 
 import numpy as np
 import sympy as sp
@@ -13,6 +15,30 @@ from tutgen.engine.constraints.kinematics import damped_gauss_newton
 from tutgen.model.system import GROUND, Body, ConstraintKind, JointKind, System
 
 Vec = np.ndarray
+
+#: While a drawing is made (:func:`reading`), the symbols whose numbers it has read: a drawing is a
+#: function of its system's structure and of these numbers only (tutgen.figure.build.draw_system).
+_READS: list[set[sp.Basic]] = []
+
+
+@contextmanager
+def reading() -> Iterator[set[sp.Basic]]:
+    """The symbols every :class:`Numbers` evaluates an expression of, inside the ``with`` (nested
+    recordings each get their own set, and the outer one the inner one's too)."""
+    read: set[sp.Basic] = set()
+    _READS.append(read)
+    try:
+        yield read
+    finally:
+        _READS.pop()
+        if _READS:
+            _READS[-1].update(read)
+
+
+def read(symbols: Iterable[sp.Basic]) -> None:
+    """Mark ``symbols`` as read by the drawing being made (a number taken from the table directly)."""
+    if _READS:
+        _READS[-1].update(symbols)
 
 
 def default_size(name: str) -> float:
@@ -41,7 +67,7 @@ class Numbers:
         self.table = {s: sp.Float(v) for s, v in table.items()}
         self.moving = moving
         self.cache: dict[sp.Basic, float] = {}
-        self.mcache: dict[int, tuple[object, Vec]] = {}
+        self.mcache: dict[int, tuple[object, Vec, set[sp.Basic]]] = {}
 
     def with_(self, symbol: sp.Symbol, value: float) -> Numbers:
         out = Numbers({}, self.moving)
@@ -53,6 +79,8 @@ class Numbers:
         e0 = sp.sympify(expr)
         if e0.is_Number:
             return float(e0)
+        if _READS:
+            _READS[-1].update(e0.free_symbols)
         hit = self.cache.get(e0)
         if hit is not None:
             return hit
@@ -76,11 +104,13 @@ class Numbers:
         which the model keeps alive)."""
         hit = self.mcache.get(id(m))
         if hit is not None and hit[0] is m:
+            read(hit[2])
             return hit[1].copy()
         mm = sp.Matrix(m)
         value = np.array([[self(v) for v in row] for row in mm.tolist()], dtype=float)
-        if not (mm.free_symbols & self.moving):
-            self.mcache[id(m)] = (m, value)
+        free = mm.free_symbols
+        if not (free & self.moving):
+            self.mcache[id(m)] = (m, value, free)
         return value.copy()
 
 
