@@ -147,3 +147,51 @@ def test_grammar_json_is_the_same_under_any_hash_seed():
         outs.append(run.stdout)
     assert outs[0] == outs[1]
     assert json.loads(outs[0])["results"]["mass_matrix"]
+
+
+def _sums(expr: sp.Basic):
+    """Every sum in ``expr`` (a matrix's entries, an expression's subexpressions)."""
+    for entry in expr if isinstance(expr, sp.MatrixBase) else [expr]:
+        for node in sp.preorder_traversal(entry):
+            if isinstance(node, sp.Add):
+                yield node
+
+
+_TUTORIAL = [pytest.param(p, id=p.stem) for p in sorted((SPECS / "tutorial-1").glob("p*.yaml"))]
+
+
+@pytest.mark.parametrize("spec", _TUTORIAL)
+def test_lex_terms_are_sympys_lex_order(spec):
+    """``lex_terms`` (tutgen's fast term order for the short JSON values) gives sympy's own list, on every
+    sum of a tutorial problem's results, symbolic and with a sheet's kind of numbers put in (floats,
+    fractions, a square root and pi as factors); the printed texts are the same too."""
+    from tutgen.render.grammar import _LEX, lex_terms
+
+    system, d, _ = solved(str(spec))
+    results = [d.mass_matrix, d.gravity_vector, d.coriolis_vector, d.kinetic_energy, d.potential_energy]
+    symbols = sorted({p.symbol for p in system.parameters}, key=str)
+    numbers = [sp.Float("2.5"), sp.Rational(3, 4), sp.Float("9.81"), sp.sqrt(2), sp.pi, sp.Float("0.125"), 7]
+    valued = {s: numbers[i % len(numbers)] for i, s in enumerate(symbols)}
+    old = _LexPrinter({"order": "lex"})
+    checked = 0
+    for result in results:
+        if result is None:
+            continue
+        for expr in (result, result.xreplace(valued)):
+            for total in _sums(expr):
+                assert lex_terms(total) == total.as_ordered_terms(order="lex"), total
+                checked += 1
+            entries = list(expr) if isinstance(expr, sp.MatrixBase) else [expr]
+            for entry in entries:
+                assert _LEX.doprint(entry) == old.doprint(entry)
+    if spec.stem.startswith(("p01", "p10")):
+        return  # inertia alone, or a given energy: no matrices of sums
+    assert checked > 0
+
+
+@pytest.mark.parametrize("expr", SHAPES)
+def test_lex_terms_on_the_grammar_shapes(expr):
+    from tutgen.render.grammar import lex_terms
+
+    for total in _sums(expr):
+        assert lex_terms(total) == total.as_ordered_terms(order="lex")

@@ -47,7 +47,75 @@ _SUM, _PRODUCT, _POWER, _ATOM = 1, 2, 3, 4
 #: reader of a short result or an answer check's feedback expects (a**2*m, terms by their monomials)
 LEX_BUDGET = 60
 
-_LEX = _GrammarPrinter({"order": "lex"})
+
+class _LexPrinter(_GrammarPrinter):
+    """The grammar printer in sympy's lex order, its terms ordered by :func:`lex_terms`."""
+
+    def _as_ordered_terms(self, expr: sp.Basic, order: str | None = None) -> list[sp.Basic]:
+        if (order or self.order) == "lex":
+            found = lex_terms(expr)
+            if found is not None:
+                return found
+        return list(super()._as_ordered_terms(expr, order=order))
+
+
+_LEX = _LexPrinter({"order": "lex"})
+
+
+def lex_terms(expr: sp.Basic) -> list[sp.Basic] | None:
+    """``expr.as_ordered_terms(order="lex")``, the same list, about twice as fast: sympy's ``as_terms``
+    converts every term's number with ``complex()``, through ``evalf``, which was most of a sheet's answer
+    keys' time (issue 17); the numbers of a problem's terms repeat, and each is converted once here.
+    ``None`` for a sum with an ``Order`` term or a non-commutative factor (sympy's own path then)."""
+    from sympy.core.exprtools import decompose_power
+
+    gens: set[sp.Basic] = set()
+    terms: list[tuple[sp.Basic, tuple[float, float], dict[sp.Basic, object]]] = []
+    for term in sp.Add.make_args(expr):
+        if term.is_Order or not term.is_commutative:
+            return None
+        coeff, rest = term.as_coeff_Mul()
+        value = _complex(coeff)
+        cpart: dict[sp.Basic, object] = {}
+        if rest is not sp.S.One:
+            for factor in sp.Mul.make_args(rest):
+                if factor.is_number:
+                    try:
+                        value *= _complex(factor)
+                    except (TypeError, ValueError):
+                        pass
+                    else:
+                        continue
+                base, exp = decompose_power(factor)
+                cpart[base] = exp
+                gens.add(base)
+        terms.append((term, (value.real, value.imag), cpart))
+    index = {g: i for i, g in enumerate(sorted(gens, key=sp.default_sort_key))}
+
+    def key(entry: tuple[sp.Basic, tuple[float, float], dict[sp.Basic, object]]) -> tuple[object, ...]:
+        _, (re, im), cpart = entry
+        monom = [0] * len(index)
+        for base, exp in cpart.items():
+            monom[index[base]] = -exp  # type: ignore[operator]
+        return tuple(monom), (), ((bool(im), im), (re, im))
+
+    return [term for term, _, _ in sorted(terms, key=key)]
+
+
+_COMPLEX: dict[sp.Basic, complex] = {}
+
+
+def _complex(number: sp.Basic) -> complex:
+    """``complex(number)``, remembered (sympy compares numbers structurally: equal keys, equal values)."""
+    try:
+        return _COMPLEX[number]
+    except KeyError:
+        pass
+    value = complex(number)
+    if len(_COMPLEX) >= 1 << 14:
+        _COMPLEX.clear()
+    _COMPLEX[number] = value
+    return value
 
 
 def grammar_text(expr: sp.Basic) -> str:
