@@ -32,7 +32,7 @@ MEMO_SIZE = 1 << 14
 
 def forget() -> None:
     """Empty the memoised functions' tables (tests that count the work done)."""
-    for memoised in (ops, arranged, _arranged_terms):
+    for memoised in (ops, arranged, _arranged_terms, _coefficient):
         memoised.cache_clear()
 
 
@@ -189,14 +189,16 @@ def _arrange(terms: list[sp.Expr], level: int, levels: _Levels) -> list[Term]:
         if part == 1:
             out += _arrange(coeffs, level + 1, levels)
             continue
-        sign, body = _coefficient(coeffs, level + 1, levels)
+        sign, body = _coefficient(tuple(coeffs), level + 1, levels)
         out.append((sign, _times(body, part)))
     return out
 
 
-def _coefficient(coeffs: list[sp.Expr], level: int, levels: _Levels) -> Term:
+@lru_cache(maxsize=MEMO_SIZE)
+def _coefficient(coeffs: tuple[sp.Expr, ...], level: int, levels: _Levels) -> Term:
     """A group's coefficient: the common factor in front, the rest arranged from ``level`` on, with a
-    positive lead (``-(m_3 + m_4) g``, ``(m_1 + m_2) a_1^2 + m_2 a_2^2``)."""
+    positive lead (``-(m_3 + m_4) g``, ``(m_1 + m_2) a_1^2 + m_2 a_2^2``). Remembered: the sums of a
+    worked solution share their groups (T in L, L's terms in Lagrange's), six calls in seven repeat one."""
     if len(coeffs) == 1 and coeffs[0].is_Atom:  # a lone number or symbol: nothing to factor (factor_terms'
         return positive_lead(coeffs[0])  # own first test), nor to arrange
     total = sp.factor_terms(sp.Add(*coeffs))
