@@ -106,3 +106,38 @@ def test_solve_timeout_option_stops_cleanly(tmp_path) -> None:
     assert result.exit_code == 4, result.output
     assert "it was at: " in result.stderr and "Traceback" not in result.stderr
     assert not out.exists()
+
+
+def test_a_timeout_pickles_with_its_place_and_step() -> None:
+    """A sheet's worker sends its timeout to the parent pickled (issue 17: the problems are derived in
+    the workers); the parent prints the same text, naming the spec and the step."""
+    import pickle
+
+    from tutgen.spec.loader import Location
+
+    for stage in ("derivation", "rendering"):
+        err = DerivationTimeout(2.5, "mass matrix", stage)
+        err.location = Location("specs/p05.yaml", 1, 1)
+        back = pickle.loads(pickle.dumps(err))
+        assert type(back) is DerivationTimeout
+        assert str(back) == str(err) and "specs/p05.yaml:1:1" in str(back)
+        assert (back.seconds, back.step, back.stage) == (2.5, "mass matrix", stage)
+
+
+def test_a_sheets_workers_keep_the_runs_deadline_and_name_the_spec() -> None:
+    """A sheet's problems derived in two workers, inside the run's deadline: the timeout is raised in
+    the worker, naming the spec and the step reached, with the run's whole budget (as one worker says)."""
+    from tests.conftest import SPECS
+    from tutgen.limits import stage
+    from tutgen.sheet.build import derive_problems
+    from tutgen.sheet.executor import ProcessExecutor
+    from tutgen.sheet.model import load_sheet
+
+    sheet = load_sheet(SPECS / "tutorial-1" / "sheet.yaml")
+    with pytest.raises(DerivationTimeout) as info:
+        with deadline(0.3):
+            stage("derivation", "the problems")
+            derive_problems(sheet, None, 0.3, ProcessExecutor(2))
+    text = str(info.value)
+    assert text.startswith("specs/tutorial-1/p0") or "/specs/tutorial-1/p0" in text, text
+    assert "did not finish within 0.3 s (it was at: " in text and "(it was at: the problems)" not in text

@@ -145,6 +145,10 @@ class DerivationTimeout(DerivationError):
             )
         super().__init__(f"{text}; simplify the spec or raise --timeout")
 
+    def __reduce__(self) -> tuple[object, ...]:
+        """Pickled with its own arguments (a sheet's worker sends it to the parent), and its location."""
+        return type(self), (self.seconds, self.step, self.stage), self.__dict__
+
 
 class SimulationError(LocatedError):
     """`tutgen simulate` could not integrate to the end: a singular mass matrix at a state along the way

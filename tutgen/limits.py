@@ -29,6 +29,7 @@ __all__ = [
     "checkpoint",
     "current_step",
     "deadline",
+    "inherited_deadline",
     "out_of_time",
     "remaining",
     "shielded",
@@ -180,6 +181,31 @@ def deadline(seconds: float | None) -> Iterator[None]:
     finally:
         _state["expired"] = None
         _state["ends"] = None
+
+
+@contextmanager
+def inherited_deadline(margin: float = 0.25) -> Iterator[None]:
+    """In a worker forked inside the parent's :func:`deadline`: the time the parent has left, less
+    ``margin``, as this process's own deadline, so that a timeout here is raised by the work itself,
+    naming its stage and step (a sheet's problem being derived), and reaches the parent before the
+    parent's own alarm, which knows neither. The message states the run's whole budget. A no-op
+    without an inherited deadline (and where :func:`alarm` cannot arm)."""
+    ends, total = _state["ends"], _state.get("seconds")
+    if ends is None or not total:
+        yield
+        return
+
+    def expired() -> BaseException:
+        _state["expired"] = total
+        return DerivationTimeout(total, current_step(), _state["stage"])
+
+    _state["armed"] = False  # the parent's alarm, inherited as a flag: it does not ring in this process
+    _state["stage"] = "derivation"
+    try:
+        with alarm(max(ends - time.monotonic() - margin, 0.01), expired, 0.25, _state):
+            yield
+    finally:
+        _state["expired"] = None
 
 
 def forget_shields() -> None:

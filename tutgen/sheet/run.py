@@ -356,11 +356,12 @@ def run_sheet(
         check_scheduler_address(scheduler)
     with output_lock(plan.out):
         with deadline(timeout):
-            derivations, derive_seconds = derive_problems(plan.sheet, method, timeout)
-            plan = replanned(plan, derivations)  # with the free-body diagrams and plots the derivations make
-            stage("rendering", "the sheets")
             executor = make_executor(workers, scheduler)
             try:
+                stage("derivation", "the problems")
+                derivations, derive_seconds = derive_problems(plan.sheet, method, timeout, executor)
+                plan = replanned(plan, derivations)  # with the free-body diagrams and plots the derivations make
+                stage("rendering", "the sheets")
                 build = build_sheet(
                     plan.sheet,
                     formats=plan.formats,
