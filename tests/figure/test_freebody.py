@@ -300,3 +300,14 @@ def _disjoint(a: tuple[float, float], b: tuple[float, float], c: tuple[float, fl
     ux, uy = (b[0] - a[0]) / math.dist(a, b), (b[1] - a[1]) / math.dist(a, b)
     s = sorted(((c[0] - a[0]) * ux + (c[1] - a[1]) * uy, (d[0] - a[0]) * ux + (d[1] - a[1]) * uy))
     return s[0] >= math.dist(a, b) - 1e-6 or s[1] <= 1e-6
+
+
+@pytest.mark.parametrize("spec", [p for p in all_specs() if "puma" not in p.name], ids=lambda p: p.stem)
+def test_free_body_names_are_the_bodies_drawn(spec: Path) -> None:
+    """A sheet plans its files from the names of the free bodies before any is drawn
+    (render.sections.newton_euler.free_body_names, issue 17): the same bodies, in the same order."""
+    from tests.conftest import solved
+    from tutgen.render.sections.newton_euler import free_bodies, free_body_names
+
+    d = solved(str(spec))[1]
+    assert free_body_names(d) == [v["body"] for v in free_bodies(d)]

@@ -162,6 +162,16 @@ def svg_file(system: System) -> tuple[str, str] | None:
     return svg_name(system), to_svg(drawing, system.title)
 
 
+def free_body_bodies(system: System) -> list[str]:
+    """The bodies :func:`free_body_views` draws, in its order, without drawing them: every body with
+    a mass when the system is drawn in the plane (a sheet plans its files from these names)."""
+    from tutgen.figure.build import draw_system
+
+    if not system.bodies or draw_system(system).view != "planar":
+        return []
+    return [body.name for body in system.bodies if body.parts]
+
+
 def free_body_views(system: System, forces: Mapping[str, Sequence[BodyForce]] | None = None) -> list[dict[str, Any]]:
     """The free-body diagrams of a planar system's bodies (every body with a mass, in spec order), as
     a template or the file writer needs them: ``body``; ``tikz`` (LaTeX); ``svg``, the relative name
@@ -169,18 +179,14 @@ def free_body_views(system: System, forces: Mapping[str, Sequence[BodyForce]] | 
     ``remarks``. ``forces``: per body, the forces to draw instead of the model's own
     (:func:`tutgen.figure.freebody.body_forces`), as the Newton–Euler step names them. A spatial
     system gets none (its diagrams would need the oblique view's care)."""
-    from tutgen.figure.build import draw_system
     from tutgen.figure.freebody import free_body_diagram
     from tutgen.figure.svg import to_svg
     from tutgen.figure.tikz import to_tikz
 
-    if not system.bodies or draw_system(system).view != "planar":
-        return []
     stem = svg_name(system).removesuffix(".figure.svg")
     out = []
-    for body in system.bodies:
-        if not body.parts:
-            continue
+    for name in free_body_bodies(system):
+        body = system.body(name)
         drawing = free_body_diagram(system, body.name, (forces or {}).get(body.name))
         out.append(
             {

@@ -41,7 +41,9 @@ def _free_bodies(d: Derivation) -> list[dict[str, Any]]:
 def asset_names(key: str, d: Derivation, formats: tuple[str, ...] | list[str]) -> list[str]:
     """The files of one problem's assets, relative to its sheet, in the order :func:`problem_assets`
     gives them."""
-    names = [_fbd_name(key, v["body"]) for v in _free_bodies(d)] if "md" in formats else []
+    from tutgen.render.sections.newton_euler import free_body_names
+
+    names = [_fbd_name(key, body) for body in free_body_names(d)] if "md" in formats else []
     if d.simulation is not None and ("md" in formats or "tex" in formats):
         names += [_plot_name(key, p.kind) for p in d.simulation.plots]
     return names

@@ -394,7 +394,10 @@ def derive_problems(
     if executor is None or executor.workers <= 1:
         derived = [_derived(system, method, timeout) for system in (p.system for p in sheet.problems)]
     else:
-        import tutgen.engine.pipeline  # noqa: F401  (imported once here, before the pool forks its workers)
+        # imported once here, before the pool forks its workers (Newton–Euler is otherwise imported on use)
+        import tutgen.engine.newton_euler
+        import tutgen.engine.pipeline
+        import tutgen.engine.planar_ne  # noqa: F401
 
         jobs = [p.system for p in sheet.problems]
         derived = executor.map(_derive_job, (method, timeout), jobs)

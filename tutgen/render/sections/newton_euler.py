@@ -551,6 +551,18 @@ def free_bodies(d: Derivation) -> list[dict[str, Any]]:
     return [dict(v) for v in views]
 
 
+def free_body_names(d: Derivation) -> list[str]:
+    """The bodies :func:`free_bodies` draws, in its order, without drawing them (a sheet plans its
+    files from them before it builds anything)."""
+    from tutgen.figure.view import free_body_bodies
+
+    ne = d.newton_euler
+    if ne is None or ne.planar is None or Ask.EQUATIONS_OF_MOTION not in d.system.ask:
+        return []
+    balanced = {b.body for b in ne.planar.balances}
+    return [body for body in free_body_bodies(d.system) if body in balanced]
+
+
 #: the free-body views made for the last few derivations: a solution written to a file asks for them for
 #: its Newton–Euler step and again for the SVGs beside it, a sheet's unit for its step and its assets (the
 #: diagrams themselves are remembered per system, tutgen.figure.freebody; their TikZ and SVG here)
