@@ -195,3 +195,40 @@ def test_lex_terms_on_the_grammar_shapes(expr):
 
     for total in _sums(expr):
         assert lex_terms(total) == total.as_ordered_terms(order="lex")
+
+
+def _random_expressions(count: int, seed: int) -> list[sp.Expr]:
+    """Sums of products as results have them: numbers of every kind (negative, fractions, floats, roots,
+    pi), powers with negative and fractional exponents, functions of sums, brackets."""
+    import random
+
+    rng = random.Random(seed)
+    t1, t2 = sp.symbols("theta1 theta2")
+    atoms = [x, y, z, t1, t2, sp.sin(t1), sp.cos(t2), sp.sin(t1 + t2), sp.cos(t1 - t2), x + y, y - 2 * z]
+    numbers = [sp.Integer(-3), sp.Rational(-1, 2), sp.Rational(3, 4), sp.Float("2.5"), sp.Float("-0.125")]
+    numbers += [sp.sqrt(2), sp.pi, sp.Integer(7), sp.Rational(-7, 3), sp.Float("9.81")]
+    exprs = []
+    for _ in range(count):
+        terms = []
+        for _ in range(rng.randint(1, 5)):
+            factors = [rng.choice(numbers)]
+            for _ in range(rng.randint(0, 3)):
+                factors.append(
+                    rng.choice(atoms) ** rng.choice([1, 1, 2, -1, -2, sp.Rational(1, 2), sp.Rational(-3, 2)])
+                )
+            terms.append(sp.Mul(*factors))
+        exprs.append(sp.Add(*terms))
+    return exprs
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_lex_printer_prints_what_sympys_prints(seed):
+    """tutgen's lex printer (faster term order, precedence and factor order: issue 17) against sympy's own
+    printer of earlier versions, text for text, on the grammar's shapes and on many generated sums."""
+    from tutgen.render.grammar import _LEX
+
+    old = _LexPrinter({"order": "lex"})
+    exprs = [p.values[0] for p in SHAPES] + _random_expressions(150, seed)
+    for expr in exprs:
+        assert _LEX.doprint(expr) == old.doprint(expr), expr
+        assert _LEX.doprint(-expr) == old.doprint(-expr), -expr

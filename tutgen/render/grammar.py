@@ -20,8 +20,11 @@ function) is printed by sympy's own printer, kept inside the grammar.
 from __future__ import annotations
 
 from functools import lru_cache
+from typing import Any
 
 import sympy as sp
+from sympy.core.mul import _keep_coeff
+from sympy.printing.precedence import PRECEDENCE, PRECEDENCE_FUNCTIONS, PRECEDENCE_VALUES, precedence
 from sympy.printing.str import StrPrinter
 
 from tutgen.render.size import lower_bound_exceeds
@@ -49,7 +52,8 @@ LEX_BUDGET = 60
 
 
 class _LexPrinter(_GrammarPrinter):
-    """The grammar printer in sympy's lex order, its terms ordered by :func:`lex_terms`."""
+    """The grammar printer in sympy's lex order, its terms ordered by :func:`lex_terms` and its
+    parentheses decided by :func:`_precedence` (both sympy's results, faster)."""
 
     def _as_ordered_terms(self, expr: sp.Basic, order: str | None = None) -> list[sp.Basic]:
         if (order or self.order) == "lex":
@@ -57,6 +61,76 @@ class _LexPrinter(_GrammarPrinter):
             if found is not None:
                 return found
         return list(super()._as_ordered_terms(expr, order=order))
+
+    def parenthesize(self, item: sp.Basic, level: int, strict: bool = False) -> str:
+        prec = _precedence(item)
+        if prec < level or (not strict and prec <= level):
+            return f"({self._print(item)})"
+        return str(self._print(item))
+
+    def _print_Mul(self, expr: sp.Basic) -> str:
+        """sympy's ``StrPrinter._print_Mul`` for a product as sympy builds it, with :func:`_precedence` and
+        each factor's sort key remembered; anything else (an unevaluated product) by sympy's own."""
+        args = expr.args
+        if args[0] is sp.S.One or any(
+            isinstance(a, sp.Number) or (a.is_Pow and all(ai.is_Integer for ai in a.args)) for a in args[1:]
+        ):
+            return str(super()._print_Mul(expr))
+        prec = _precedence(expr)
+        c, e = expr.as_coeff_Mul()
+        if c < 0:
+            expr = _keep_coeff(-c, e)
+            sign = "-"
+        else:
+            sign = ""
+        num: list[sp.Basic] = []  # the numerator's items
+        den: list[sp.Basic] = []  # the denominator's
+        pow_paren = []  # powers with exponent -1 of a base of several factors
+        for item in _ordered_factors(expr):
+            if item.is_commutative and item.is_Pow and bool(item.exp.as_coeff_Mul()[0] < 0):
+                if item.exp is not sp.S.NegativeOne:
+                    den.append(_inverted(item))
+                else:
+                    if len(item.args[0].args) != 1 and isinstance(item.base, (sp.Mul, sp.Pow)):
+                        pow_paren.append(item)
+                    den.append(item.base)
+            elif item.is_Rational and item is not sp.S.Infinity:
+                if item.p != 1:
+                    num.append(sp.Rational(item.p))
+                if item.q != 1:
+                    den.append(sp.Rational(item.q))
+            else:
+                num.append(item)
+        num = num or [sp.S.One]
+        num_str = [self.parenthesize(x, prec, strict=False) for x in num]
+        den_str = [self.parenthesize(x, prec, strict=False) for x in den]
+        for item in pow_paren:
+            if item.base in den:
+                den_str[den.index(item.base)] = f"({den_str[den.index(item.base)]})"
+        if not den:
+            return sign + "*".join(num_str)
+        if len(den) == 1:
+            return sign + "*".join(num_str) + "/" + den_str[0]
+        return sign + "*".join(num_str) + "/({})".format("*".join(den_str))
+
+    def _print_Add(self, expr: sp.Basic, order: str | None = None) -> str:
+        """sympy's ``StrPrinter._print_Add``, with :func:`_precedence`."""
+        terms = self._as_ordered_terms(expr, order=order)
+        prec = _precedence(expr)
+        out: list[str] = []
+        for term in terms:
+            t = self._print(term)
+            if t.startswith("-") and not term.is_Add:
+                sign = "-"
+                t = t[1:]
+            else:
+                sign = "+"
+            if _precedence(term) < prec or term.is_Add:
+                out.extend([sign, f"({t})"])
+            else:
+                out.extend([sign, t])
+        sign = out.pop(0)
+        return ("" if sign == "+" else sign) + " ".join(out)
 
 
 _LEX = _LexPrinter({"order": "lex"})
@@ -100,6 +174,80 @@ def lex_terms(expr: sp.Basic) -> list[sp.Basic] | None:
         return tuple(monom), (), ((bool(im), im), (re, im))
 
     return [term for term, _, _ in sorted(terms, key=key)]
+
+
+def _ordered_factors(expr: sp.Basic) -> list[sp.Basic]:
+    """``expr.as_ordered_factors()`` (a product's commutative factors by their sort keys, then the others),
+    each factor's key remembered."""
+    if not expr.is_Mul:
+        return [expr]
+    cpart, ncpart = expr.args_cnc()
+    cpart.sort(key=_sort_key)
+    return [*cpart, *ncpart]
+
+
+_SORT_KEYS: dict[sp.Basic, Any] = {}
+
+
+def _sort_key(factor: sp.Basic) -> Any:
+    try:
+        return _SORT_KEYS[factor]
+    except KeyError:
+        pass
+    if len(_SORT_KEYS) >= 1 << 14:
+        _SORT_KEYS.clear()
+    key = _SORT_KEYS[factor] = factor.sort_key(order=None)
+    return key
+
+
+def _inverted(item: sp.Basic) -> sp.Basic:
+    """sympy's ``apow`` of ``StrPrinter._print_Mul``: a power with its exponent's sign changed."""
+    b, e = item.as_base_exp()
+    eargs = list(sp.Mul.make_args(e))
+    if eargs[0] is sp.S.NegativeOne:
+        eargs = eargs[1:]
+    else:
+        eargs[0] = -eargs[0]
+    e = sp.Mul._from_args(eargs)
+    if isinstance(item, sp.Pow):
+        return item.func(b, e, evaluate=False)
+    return item.func(e, evaluate=False)
+
+
+#: how sympy's ``precedence`` finds the precedence of an object of each class: by walking the class's MRO
+#: for a name in its tables, every time; the walk's outcome depends on the class alone
+_PRECEDENCE_OF: dict[type, tuple[str, Any]] = {}
+
+
+def _precedence(item: sp.Basic) -> int:
+    """``sympy.printing.precedence.precedence(item)``, the same number: the walk of the class's MRO done
+    once per class, and a product's sign read off its number (sympy compares the product with its
+    negative, building it) when that number is finite (a product's number is never zero)."""
+    how = _PRECEDENCE_OF.get(type(item))
+    if how is None:
+        how = _PRECEDENCE_OF[type(item)] = _precedence_rule(type(item))
+    kind, rule = how
+    if kind == "value":
+        return int(rule)
+    if kind == "mul" and not any(hasattr(a, "precedence") and isinstance(a, sp.Function) for a in item.args):
+        first = item.args[0]
+        if not first.is_Number:
+            return PRECEDENCE["Mul"]
+        if first.is_finite:
+            return PRECEDENCE["Add"] if first.is_extended_negative else PRECEDENCE["Mul"]
+    return int(precedence(item))
+
+
+def _precedence_rule(cls: type) -> tuple[str, Any]:
+    if hasattr(cls, "precedence"):
+        return "sympy", None
+    for base in cls.mro():
+        name = base.__name__
+        if name in PRECEDENCE_FUNCTIONS:
+            return ("mul", None) if name == "Mul" else ("sympy", None)
+        if name in PRECEDENCE_VALUES:
+            return "value", PRECEDENCE_VALUES[name]
+    return "value", PRECEDENCE["Atom"]
 
 
 _COMPLEX: dict[sp.Basic, complex] = {}
