@@ -141,3 +141,18 @@ def test_a_sheets_workers_keep_the_runs_deadline_and_name_the_spec() -> None:
     text = str(info.value)
     assert text.startswith("specs/tutorial-1/p0") or "/specs/tutorial-1/p0" in text, text
     assert "did not finish within 0.3 s (it was at: " in text and "(it was at: the problems)" not in text
+
+
+def test_an_inherited_deadline_in_its_own_process_leaves_the_alarm_armed() -> None:
+    """``inherited_deadline`` is for a forked worker; where the deadline is the process's own (a pool of
+    one job runs it in the parent) it must not disarm the run's alarm (it did: a sheet of one problem ran
+    past --timeout)."""
+    from tutgen.limits import inherited_deadline
+
+    start = time.monotonic()
+    with pytest.raises(DerivationTimeout):
+        with deadline(0.3):
+            with inherited_deadline():
+                pass
+            time.sleep(3)
+    assert time.monotonic() - start < 2

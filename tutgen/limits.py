@@ -14,6 +14,7 @@ and :func:`shielded` holds off the alarm, SIGINT and SIGTERM while cleanup that 
 
 from __future__ import annotations
 
+import os
 import signal
 import threading
 import time
@@ -175,6 +176,7 @@ def deadline(seconds: float | None) -> Iterator[None]:
     _state["stage"] = "derivation"
     _state["ends"] = time.monotonic() + float(seconds)
     _state["seconds"] = seconds
+    _state["owner"] = os.getpid()  # a forked worker has the state, not the alarm (inherited_deadline)
     try:
         with alarm(seconds, expired, 0.25, _state):
             yield
@@ -189,9 +191,10 @@ def inherited_deadline(margin: float = 0.25) -> Iterator[None]:
     ``margin``, as this process's own deadline, so that a timeout here is raised by the work itself,
     naming its stage and step (a sheet's problem being derived), and reaches the parent before the
     parent's own alarm, which knows neither. The message states the run's whole budget. A no-op
-    without an inherited deadline (and where :func:`alarm` cannot arm)."""
+    without an inherited deadline, in the process whose deadline it is (an executor that runs a
+    single job in the parent), and where :func:`alarm` cannot arm."""
     ends, total = _state["ends"], _state.get("seconds")
-    if ends is None or not total:
+    if ends is None or not total or _state.get("owner") == os.getpid():
         yield
         return
 
