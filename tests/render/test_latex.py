@@ -121,3 +121,17 @@ def test_the_specs_significant_figures_set_every_decimal() -> None:
     assert TexPrinter(system)(sp.Float(2.94337)) == "2.943"  # the default, 4
     three = dataclasses.replace(system, significant_figures=3)
     assert TexPrinter(three)(sp.Float(2.94337) * sp.Symbol("x")) == "2.94 x"
+
+
+def test_latex_escape_is_the_character_by_character_rule() -> None:
+    """``latex_escape`` (one ``str.translate``, issue 17) replaces each character as the rule says: a TeX
+    special by its escape, else a known Unicode symbol by its maths, else the character itself."""
+    import random
+
+    from tutgen.render.escape import _SPECIALS, _UNICODE, latex_escape
+
+    alphabet = [*_SPECIALS, *_UNICODE, *"abc XYZ 019 .,;:!?'\"()[]*+-=/@", "\u00e9", "\u4e2d", "\U0001f600"]
+    rng = random.Random(17)
+    for _ in range(500):
+        text = "".join(rng.choice(alphabet) for _ in range(rng.randint(0, 40)))
+        assert latex_escape(text) == "".join(_SPECIALS.get(ch) or _UNICODE.get(ch, ch) for ch in text)
