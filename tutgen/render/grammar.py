@@ -186,18 +186,10 @@ def _ordered_factors(expr: sp.Basic) -> list[sp.Basic]:
     return [*cpart, *ncpart]
 
 
-_SORT_KEYS: dict[sp.Basic, Any] = {}
-
-
+@lru_cache(maxsize=1 << 14)
 def _sort_key(factor: sp.Basic) -> Any:
-    try:
-        return _SORT_KEYS[factor]
-    except KeyError:
-        pass
-    if len(_SORT_KEYS) >= 1 << 14:
-        _SORT_KEYS.clear()
-    key = _SORT_KEYS[factor] = factor.sort_key(order=None)
-    return key
+    """``factor.sort_key()``, remembered (a problem's factors recur in every variant)."""
+    return factor.sort_key(order=None)
 
 
 def _inverted(item: sp.Basic) -> sp.Basic:
@@ -250,20 +242,10 @@ def _precedence_rule(cls: type) -> tuple[str, Any]:
     return "value", PRECEDENCE["Atom"]
 
 
-_COMPLEX: dict[sp.Basic, complex] = {}
-
-
+@lru_cache(maxsize=1 << 14)
 def _complex(number: sp.Basic) -> complex:
     """``complex(number)``, remembered (sympy compares numbers structurally: equal keys, equal values)."""
-    try:
-        return _COMPLEX[number]
-    except KeyError:
-        pass
-    value = complex(number)
-    if len(_COMPLEX) >= 1 << 14:
-        _COMPLEX.clear()
-    _COMPLEX[number] = value
-    return value
+    return complex(number)
 
 
 def grammar_text(expr: sp.Basic) -> str:

@@ -539,13 +539,13 @@ def free_bodies(d: Derivation) -> list[dict[str, Any]]:
     Markdown solution (:func:`tutgen.api.figure_files`) both take them from here."""
     from tutgen.figure.view import free_body_views
 
-    ne = d.newton_euler
-    if ne is None or ne.planar is None or Ask.EQUATIONS_OF_MOTION not in d.system.ask:
+    balances = _drawn_balances(d)
+    if not balances:
         return []
     views = _VIEWS.get(d)  # made for this derivation already (the section, then the files)
     if views is None:
         coords = {c.name: c.latex for c in d.system.coordinates}
-        forces = {b.body: diagram_forces(b, coords) for b in ne.planar.balances}
+        forces = {b.body: diagram_forces(b, coords) for b in balances}
         # only the bodies the step has a balance for (a massless body has none)
         views = _VIEWS.put(d, [v for v in free_body_views(d.system, forces) if v["body"] in forces])
     return [dict(v) for v in views]
@@ -556,11 +556,17 @@ def free_body_names(d: Derivation) -> list[str]:
     files from them before it builds anything)."""
     from tutgen.figure.view import free_body_bodies
 
+    balanced = {b.body for b in _drawn_balances(d)}
+    return [body for body in free_body_bodies(d.system) if body in balanced] if balanced else []
+
+
+def _drawn_balances(d: Derivation) -> tuple[PlanarBalance, ...]:
+    """The planar Newton–Euler step's balances whose free bodies are drawn: none where the step is not
+    printed (no Newton–Euler, no equations of motion asked, a spatial system)."""
     ne = d.newton_euler
     if ne is None or ne.planar is None or Ask.EQUATIONS_OF_MOTION not in d.system.ask:
-        return []
-    balanced = {b.body for b in ne.planar.balances}
-    return [body for body in free_body_bodies(d.system) if body in balanced]
+        return ()
+    return tuple(ne.planar.balances)
 
 
 #: the free-body views made for the last few derivations: a solution written to a file asks for them for
