@@ -248,11 +248,23 @@ def all_decimals(expr: Any) -> Any:
     return _all_decimals(expr)
 
 
+#: the subtrees :func:`_all_decimals` has put decimals into, each with its result: the same for every
+#: expression, so kept across them (a sheet's variant prints the same products in H, T, L, Lagrange's
+#: terms), and forgotten all at once past :data:`DECIMAL_TREES`
+_DECIMAL_TREES: dict[Any, tuple[Any, bool]] = {}
+DECIMAL_TREES = 1 << 17
+
+
 @lru_cache(maxsize=1 << 13)
 def _all_decimals(expr: sp.Basic) -> sp.Basic:
     """:func:`all_decimals` of an immutable expression, remembered (the sections ask for the same results
-    over and over: T in the energies, in L and in Lagrange's terms)."""
-    return expr.xreplace({r: sp.Float(r, 15) for r in expr.atoms(sp.Rational) if r.q != 1})
+    over and over: T in the energies, in L and in Lagrange's terms): ``expr.xreplace({r: Float(r, 15)
+    for r in expr.atoms(Rational) if r.q != 1})``, each subtree rebuilt once."""
+    from tutgen.engine.replace import DECIMALS, replaced
+
+    if len(_DECIMAL_TREES) > DECIMAL_TREES:
+        _DECIMAL_TREES.clear()
+    return replaced(expr, DECIMALS, _DECIMAL_TREES)[0]
 
 
 def tex_name(name: str) -> str:

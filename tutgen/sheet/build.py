@@ -16,9 +16,11 @@ from __future__ import annotations
 
 import csv
 import dataclasses
+import gc
 import io
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -128,25 +130,44 @@ def variant_derivation(
 @dataclass(frozen=True)
 class VariantDerivation(Derivation):
     """A derivation with a variant's values: the same symbolic results, and a :meth:`numeric` that
-    replaces the parameters by their values with ``xreplace`` (exact; the symbols are atoms, so nothing
+    replaces the parameters by their values as ``xreplace`` does (exact; the symbols are atoms, so nothing
     else is needed) and remembers each result, as the views and the answer key ask for the same ones."""
 
     _memo: dict[Any, Any] = field(default_factory=dict, compare=False, repr=False)
+    #: every subtree replaced so far, with whether it changed (:func:`tutgen.engine.replace.replaced`):
+    #: the results share most of their subtrees (H's entries in the equations, T's terms in L), each
+    #: rebuilt once per unit (3 % less CPU over a sheet of 30 variants)
+    _trees: dict[Any, tuple[Any, bool]] = field(default_factory=dict, compare=False, repr=False)
 
     def numeric(self, expr: Any) -> Any:
-        values = self.values
-        if not values or not hasattr(expr, "xreplace"):
-            return expr
+        import sympy as sp
+
+        from tutgen.engine.replace import replaced
+
         try:
             return self._memo[expr]
         except (KeyError, TypeError):
             pass
-        out = expr.xreplace(values)
+        values = self._memo.get(_VALUES)
+        if values is None:
+            values = self._memo[_VALUES] = self.values
+        if not values or not hasattr(expr, "xreplace"):
+            return expr
+        if isinstance(expr, sp.MatrixBase):  # entry by entry, as a matrix's own xreplace
+            out = expr.applyfunc(lambda e: replaced(e, values, self._trees)[0])
+        elif isinstance(expr, sp.Basic):
+            out = replaced(expr, values, self._trees)[0]
+        else:
+            out = expr.xreplace(values)
         try:
             self._memo[expr] = out
         except TypeError:  # an unhashable (mutable) matrix
             pass
         return out
+
+
+#: the key of the values in :attr:`VariantDerivation._memo` (no expression equals it)
+_VALUES = object()
 
 
 def substituted(derivation: Derivation, system: Any) -> VariantDerivation:
@@ -459,7 +480,9 @@ def build_sheet(
     pieces = unit_pieces(shared, units, run.workers)
     done = _ticks(len(pieces), 1 + len(variants), on_done)
     built: dict[Unit, UnitResult] = {}
-    for piece, results_of_piece in zip(pieces, run.map(build_units, shared, pieces, done), strict=True):
+    with fewer_collections():
+        units_built = run.map(build_units, shared, pieces, done)
+    for piece, results_of_piece in zip(pieces, units_built, strict=True):
         built.update(zip(piece, results_of_piece, strict=True))
     unit_results = [built[u] for u in units]
     shared = dataclasses.replace(
@@ -470,7 +493,8 @@ def build_sheet(
         out.render_seconds += r.render_seconds
     _warm_templates(shared.formats)  # compiled once here, inherited by the workers of a fork
     jobs = [Job(None), *(Job(v) for v in variants)]
-    results = run.map(build_job, shared, jobs, None)
+    with fewer_collections():
+        results = run.map(build_job, shared, jobs, None)
     if on_done:
         on_done()  # the last tick: every sheet is built
     for job, result in zip(jobs, results, strict=True):
@@ -487,6 +511,27 @@ def build_sheet(
         files, out.notes = lms_files(sheet.title, questions, lms_formats, LMS_FILES)
         out.files += files
     return out
+
+
+#: the collector's thresholds while the units are built: a unit makes and drops hundreds of thousands of
+#: sympy objects, nearly none of them in cycles; collecting the youngest generation every 50 000 of them
+#: instead of every 700 (Python's default) took 4 % less CPU over a sheet of 30 variants
+COLLECT_THRESHOLDS = (50_000, 20, 100)
+
+
+@contextmanager
+def fewer_collections() -> Iterator[None]:
+    """Within: every object made so far (the modules, the derivations, sympy's caches) frozen, out of the
+    collector's way (:func:`gc.freeze`, inherited by the workers a pool forks here, whose pages it then
+    leaves shared), and the youngest generation collected less often. Both undone after."""
+    before = gc.get_threshold()
+    gc.freeze()
+    gc.set_threshold(*COLLECT_THRESHOLDS)
+    try:
+        yield
+    finally:
+        gc.set_threshold(*before)
+        gc.unfreeze()
 
 
 def _ticks(units: int, jobs: int, on_done: Callable[[], None] | None) -> Callable[[], None] | None:
