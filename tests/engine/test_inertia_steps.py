@@ -205,3 +205,33 @@ def test_inertia_shape_formula_matches_the_tensor(shape: str) -> None:
             k = index[name.strip()]
             assert sp.simplify(part.inertia_centroid[k, k] - value) == 0
     assert part.shape is not Shape.POINT
+
+
+@pytest.mark.parametrize(
+    "diagonal",
+    [
+        (sp.Rational(1, 3), 2, 5),
+        (7, sp.Rational(1, 12), sp.Rational(13, 12)),
+        (0, sp.sqrt(2) / 7, sp.pi / 5),
+        (sp.Rational(1, 10**14), 3, sp.Rational(2, 10**13)),
+        (2, 2, 5),  # equal moments: eigsy's own order of their axes
+        (5, 2, 2),
+        (4, 4, 4),
+    ],
+)
+def test_principal_axes_of_a_diagonal_tensor_are_eigsys_to_the_bit(diagonal: tuple[sp.Expr, ...]) -> None:
+    """The diagonal short cut (the axes of the body's frame) gives what mpmath's eigsy gives, bit for
+    bit, so that a sheet's JSON and keys are those of before; equal moments take eigsy's path itself."""
+    import mpmath
+
+    from tutgen.engine.inertia import _eigen_principal, principal_axes
+
+    found = principal_axes(sp.ImmutableMatrix(sp.diag(*diagonal)))
+    with mpmath.workdps(40):
+        m = mpmath.matrix(
+            [[mpmath.mpf(sp.N(x, 50)) if i == j else 0 for j, _ in enumerate(diagonal)] for i, x in enumerate(diagonal)]
+        )
+        reference = _eigen_principal(m, 12)
+    assert found == reference
+    assert [repr(x) for x in found.moments] == [repr(x) for x in reference.moments]
+    _check_principal(found, np.diag([float(x) for x in diagonal]))

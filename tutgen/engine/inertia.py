@@ -378,15 +378,28 @@ def principal_axes(inertia: sp.MatrixBase, digits: int = 12) -> Principal | None
         return None
     with mpmath.workdps(40):
         m = mpmath.matrix([[mpmath.mpf(sp.N(inertia[i, j], 50)) for j in range(3)] for i in range(3)])
-        values, vectors = mpmath.eigsy(m)
-        order = sorted(range(3), key=lambda k: values[k])
-        moments = tuple(_round(values[k], digits) for k in order)
-        axes = []
-        for k in order:
-            col = [vectors[i, k] for i in range(3)]
-            big = max(range(3), key=lambda i: (abs(col[i]), -i))
-            sign = 1 if col[big] >= 0 else -1
-            axes.append(tuple(_round(sign * v, digits) for v in col))
+        diagonal = [m[k, k] for k in range(3)]
+        if len(set(diagonal)) < 3 or any(m[i, j] != 0 for i in range(3) for j in range(3) if i != j):
+            return _eigen_principal(m, digits)
+        # the axes of the body's own frame (most bodies): eigsy's result without its iteration (a sheet's
+        # every variant asks); equal moments are left to eigsy, whose order of their axes rules
+        order = sorted(range(3), key=lambda k: diagonal[k])
+        moments = tuple(_round(diagonal[k], digits) for k in order)
+        axes = tuple(tuple(1.0 if i == k else 0.0 for i in range(3)) for k in order)
+    return Principal(moments=moments, axes=axes)  # type: ignore[arg-type]
+
+
+def _eigen_principal(m: mpmath.matrix, digits: int) -> Principal:
+    """:func:`principal_axes` of the mpmath matrix ``m`` by ``mpmath.eigsy`` (at the caller's precision)."""
+    values, vectors = mpmath.eigsy(m)
+    order = sorted(range(3), key=lambda k: values[k])
+    moments = tuple(_round(values[k], digits) for k in order)
+    axes = []
+    for k in order:
+        col = [vectors[i, k] for i in range(3)]
+        big = max(range(3), key=lambda i: (abs(col[i]), -i))
+        sign = 1 if col[big] >= 0 else -1
+        axes.append(tuple(_round(sign * v, digits) for v in col))
     return Principal(moments=moments, axes=tuple(axes))  # type: ignore[arg-type]
 
 
