@@ -225,6 +225,8 @@ def _precedence(item: sp.Basic) -> int:
         first = item.args[0]
         if not first.is_Number:
             return PRECEDENCE["Mul"]
+        if isinstance(first, sp.Rational):  # finite: its sign is its numerator's (no assumptions asked of
+            return PRECEDENCE["Add"] if first.p < 0 else PRECEDENCE["Mul"]  # a number just made: costly)
         if first.is_finite:
             return PRECEDENCE["Add"] if first.is_extended_negative else PRECEDENCE["Mul"]
     return int(precedence(item))

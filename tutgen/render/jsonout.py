@@ -44,7 +44,7 @@ def value(expr: Any) -> Any:
     if expr.is_Integer:
         return int(expr)
     if expr.is_number:
-        if expr.is_real is False:
+        if not isinstance(expr, sp.Rational) and expr.is_real is False:  # (a rational is real: not asked)
             return expr_text(expr)
         return float(sp.N(expr, 17))
     return expr_text(expr)
