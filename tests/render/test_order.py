@@ -155,3 +155,51 @@ def test_a_variants_numeric_masses_are_not_factored(monkeypatch) -> None:
     assert calls == []
     assert r"\right)^{2}" not in printed
     assert sp.expand(order.arranged(h11, order.levels_of(system)) - h11) == 0
+
+
+def _p05_levels():
+    from tutgen.render.order import levels_of
+
+    system = solved(str(P05))[0]
+    return system, levels_of(system)
+
+
+def test_an_arrangement_that_would_change_the_value_is_not_used(monkeypatch) -> None:
+    """Each group's printed coefficient is tested against the group's terms (issue 17: once per group,
+    not per sum): a coefficient that lost a term makes the whole sum print as sympy has it."""
+    from tutgen.render import order
+
+    system, levels = _p05_levels()
+    m1, m2, a1 = (next(p.symbol for p in system.parameters if str(p.symbol) == n) for n in ("m1", "m2", "a1"))
+    q1 = system.coordinates[0]
+    expr = (m1 + m2) * a1**2 * q1.qdd + m2 * a1 * sp.cos(q1.q) * q1.qd**2
+    order.forget()
+    found = order.arranged_terms(expr, levels)
+    assert found is not None
+    assert sp.expand(sum(s * b for s, b in found) - expr) == 0
+
+    real = sp.factor_terms
+
+    def drops_a_term(e: sp.Expr, *args: object, **kwargs: object) -> sp.Expr:
+        out = real(e, *args, **kwargs)
+        terms = sp.Add.make_args(sp.expand(out))
+        return real(sp.Add(*terms[1:])) if len(terms) > 1 else out
+
+    order.forget()
+    monkeypatch.setattr(order.sp, "factor_terms", drops_a_term)
+    assert order.arranged_terms(expr, levels) is None
+    order.forget()
+
+
+def test_a_group_with_sines_and_cosines_squared_keeps_its_value() -> None:
+    """sin² + cos² in a group's coefficient: the trigonometric simplification would print 1, which is
+    not what the sum expands to, so the sum is not arranged (its value is kept either way)."""
+    from tutgen.render import order
+
+    system, levels = _p05_levels()
+    m2, a2 = (next(p.symbol for p in system.parameters if str(p.symbol) == n) for n in ("m2", "a2"))
+    q1, q2 = system.coordinates
+    expr = m2 * a2**2 * sp.sin(q2.q) ** 2 * q1.qdd + m2 * a2**2 * sp.cos(q2.q) ** 2 * q1.qdd
+    order.forget()
+    found = order.arranged_terms(expr, levels)
+    assert found is None or sp.expand(sum(s * b for s, b in found) - expr) == 0

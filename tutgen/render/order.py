@@ -198,9 +198,25 @@ def _arrange(terms: list[sp.Expr], level: int, levels: _Levels) -> list[Term]:
 def _coefficient(coeffs: tuple[sp.Expr, ...], level: int, levels: _Levels) -> Term:
     """A group's coefficient: the common factor in front, the rest arranged from ``level`` on, with a
     positive lead (``-(m_3 + m_4) g``, ``(m_1 + m_2) a_1^2 + m_2 a_2^2``). Remembered: the sums of a
-    worked solution share their groups (T in L, L's terms in Lagrange's), six calls in seven repeat one."""
+    worked solution share their groups (T in L, L's terms in Lagrange's), six calls in seven repeat one.
+    :class:`_Unkept` when the printed coefficient would not keep the value of the sum of ``coeffs``."""
     if len(coeffs) == 1 and coeffs[0].is_Atom:  # a lone number or symbol: nothing to factor (factor_terms'
         return positive_lead(coeffs[0])  # own first test), nor to arrange
+    sign, body = _factored(coeffs, level, levels)
+    # the printed coefficient keeps the value (factor_terms, trigsimp and decimals may not): its expansion
+    # is the sum's (the cheap test, which nearly always decides), or the two differ by zero (numbers of
+    # other kinds, 0.5 and 1/2, cancel). Tested here, once per group (the groups repeat), rather than on
+    # the whole arranged sum: the groups' terms are the sum's, so the sum keeps its value when each does
+    given = sp.Add(*coeffs)
+    printed = sp.expand(sign * body)
+    if printed != given and sp.expand(printed - given) != 0:
+        raise _Unkept
+    return sign, body
+
+
+def _factored(coeffs: tuple[sp.Expr, ...], level: int, levels: _Levels) -> Term:
+    """:func:`_coefficient`, untested: the common factor of the sum of ``coeffs`` in front, the rest
+    arranged from ``level`` on, with a positive lead."""
     total = sp.factor_terms(sp.Add(*coeffs))
     if _has_pythagoras(total):  # expanding may show sin² x + cos² x (a moment balance's l² θ̈ terms)
         total = sp.factor_terms(sp.trigsimp(total))
@@ -217,6 +233,10 @@ def _coefficient(coeffs: tuple[sp.Expr, ...], level: int, levels: _Levels) -> Te
     if arranged and arranged[0][0] < 0:
         sign, arranged = -sign, [(-s, b) for s, b in arranged]
     return sign, _times(common, _plus(arranged)) if common != 1 else _plus(arranged)
+
+
+class _Unkept(Exception):
+    """A group's arranged coefficient that does not keep its value: the sum is not arranged."""
 
 
 def _has_pythagoras(expr: sp.Expr) -> bool:
@@ -263,13 +283,11 @@ def _arranged_terms(expr: sp.Expr, levels: _Levels) -> tuple[Term, ...] | None:
     expanded = sp.expand(expr)
     if not isinstance(expanded, sp.Add):
         return None
-    ordered = _arrange(list(sp.Add.make_args(expanded)), 0, levels)
-    # the printed form keeps the value: its expansion is the expression's (the cheap test, which nearly
-    # always decides), or the two differ by zero (numbers of other kinds, 0.5 and 1/2, cancel)
-    printed = sp.expand(sp.Add(*(sign * body for sign, body in ordered)))
-    if printed != expanded and sp.expand(printed - expanded) != 0:
+    try:  # the printed form keeps the value: each group's coefficient is tested (_coefficient); the
+        # rest is exact (a term split into its part and coefficient, a sign taken out)
+        return tuple(_arrange(list(sp.Add.make_args(expanded)), 0, levels))
+    except _Unkept:
         return None
-    return tuple(ordered)
 
 
 @lru_cache(maxsize=MEMO_SIZE)
