@@ -16,11 +16,9 @@ from __future__ import annotations
 
 import csv
 import dataclasses
-import gc
 import io
 import time
-from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -144,15 +142,13 @@ class VariantDerivation(Derivation):
 
         from tutgen.engine.replace import replaced
 
+        values = self.values
+        if not values or not hasattr(expr, "xreplace"):
+            return expr
         try:
             return self._memo[expr]
         except (KeyError, TypeError):
             pass
-        values = self._memo.get(_VALUES)
-        if values is None:
-            values = self._memo[_VALUES] = self.values
-        if not values or not hasattr(expr, "xreplace"):
-            return expr
         if isinstance(expr, sp.MatrixBase):  # entry by entry, as a matrix's own xreplace
             out = expr.applyfunc(lambda e: replaced(e, values, self._trees)[0])
         elif isinstance(expr, sp.Basic):
@@ -164,10 +160,6 @@ class VariantDerivation(Derivation):
         except TypeError:  # an unhashable (mutable) matrix
             pass
         return out
-
-
-#: the key of the values in :attr:`VariantDerivation._memo` (no expression equals it)
-_VALUES = object()
 
 
 def substituted(derivation: Derivation, system: Any) -> VariantDerivation:
@@ -480,9 +472,7 @@ def build_sheet(
     pieces = unit_pieces(shared, units, run.workers)
     done = _ticks(len(pieces), 1 + len(variants), on_done)
     built: dict[Unit, UnitResult] = {}
-    with fewer_collections():
-        units_built = run.map(build_units, shared, pieces, done)
-    for piece, results_of_piece in zip(pieces, units_built, strict=True):
+    for piece, results_of_piece in zip(pieces, run.map(build_units, shared, pieces, done), strict=True):
         built.update(zip(piece, results_of_piece, strict=True))
     unit_results = [built[u] for u in units]
     shared = dataclasses.replace(
@@ -493,8 +483,7 @@ def build_sheet(
         out.render_seconds += r.render_seconds
     _warm_templates(shared.formats)  # compiled once here, inherited by the workers of a fork
     jobs = [Job(None), *(Job(v) for v in variants)]
-    with fewer_collections():
-        results = run.map(build_job, shared, jobs, None)
+    results = run.map(build_job, shared, jobs, None)
     if on_done:
         on_done()  # the last tick: every sheet is built
     for job, result in zip(jobs, results, strict=True):
@@ -511,27 +500,6 @@ def build_sheet(
         files, out.notes = lms_files(sheet.title, questions, lms_formats, LMS_FILES)
         out.files += files
     return out
-
-
-#: the collector's thresholds while the units are built: a unit makes and drops hundreds of thousands of
-#: sympy objects, nearly none of them in cycles; collecting the youngest generation every 50 000 of them
-#: instead of every 700 (Python's default) took 4 % less CPU over a sheet of 30 variants
-COLLECT_THRESHOLDS = (50_000, 20, 100)
-
-
-@contextmanager
-def fewer_collections() -> Iterator[None]:
-    """Within: every object made so far (the modules, the derivations, sympy's caches) frozen, out of the
-    collector's way (:func:`gc.freeze`, inherited by the workers a pool forks here, whose pages it then
-    leaves shared), and the youngest generation collected less often. Both undone after."""
-    before = gc.get_threshold()
-    gc.freeze()
-    gc.set_threshold(*COLLECT_THRESHOLDS)
-    try:
-        yield
-    finally:
-        gc.set_threshold(*before)
-        gc.unfreeze()
 
 
 def _ticks(units: int, jobs: int, on_done: Callable[[], None] | None) -> Callable[[], None] | None:
