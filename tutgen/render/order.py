@@ -202,22 +202,22 @@ def _coefficient(coeffs: tuple[sp.Expr, ...], level: int, levels: _Levels) -> Te
     :class:`_Unkept` when the printed coefficient would not keep the value of the sum of ``coeffs``."""
     if len(coeffs) == 1 and coeffs[0].is_Atom:  # a lone number or symbol: nothing to factor (factor_terms'
         return positive_lead(coeffs[0])  # own first test), nor to arrange
-    sign, body = _factored(coeffs, level, levels)
+    given = sp.Add(*coeffs)
+    sign, body = _factored(given, level, levels)
     # the printed coefficient keeps the value (factor_terms, trigsimp and decimals may not): its expansion
     # is the sum's (the cheap test, which nearly always decides), or the two differ by zero (numbers of
     # other kinds, 0.5 and 1/2, cancel). Tested here, once per group (the groups repeat), rather than on
     # the whole arranged sum: the groups' terms are the sum's, so the sum keeps its value when each does
-    given = sp.Add(*coeffs)
     printed = sp.expand(sign * body)
     if printed != given and sp.expand(printed - given) != 0:
         raise _Unkept
     return sign, body
 
 
-def _factored(coeffs: tuple[sp.Expr, ...], level: int, levels: _Levels) -> Term:
-    """:func:`_coefficient`, untested: the common factor of the sum of ``coeffs`` in front, the rest
-    arranged from ``level`` on, with a positive lead."""
-    total = sp.factor_terms(sp.Add(*coeffs))
+def _factored(given: sp.Expr, level: int, levels: _Levels) -> Term:
+    """:func:`_coefficient`, untested: the common factor of the sum ``given`` in front, the rest arranged
+    from ``level`` on, with a positive lead."""
+    total = sp.factor_terms(given)
     if _has_pythagoras(total):  # expanding may show sin² x + cos² x (a moment balance's l² θ̈ terms)
         total = sp.factor_terms(sp.trigsimp(total))
     common, inner = sp.S.One, total
