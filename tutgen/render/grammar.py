@@ -27,6 +27,7 @@ from sympy.core.mul import _keep_coeff
 from sympy.printing.precedence import PRECEDENCE, PRECEDENCE_FUNCTIONS, PRECEDENCE_VALUES, precedence
 from sympy.printing.str import StrPrinter
 
+from tutgen.render.signs import commutative_factors, negative_number
 from tutgen.render.size import lower_bound_exceeds
 
 __all__ = ["LEX_BUDGET", "fast_text", "grammar_text"]
@@ -181,7 +182,10 @@ def _ordered_factors(expr: sp.Basic) -> list[sp.Basic]:
     each factor's key remembered."""
     if not expr.is_Mul:
         return [expr]
-    cpart, ncpart = expr.args_cnc()
+    if expr.is_commutative:  # (set when the product was made) every factor is: no factor asked
+        cpart, ncpart = commutative_factors(expr), []
+    else:
+        cpart, ncpart = expr.args_cnc()
     cpart.sort(key=_sort_key)
     return [*cpart, *ncpart]
 
@@ -318,9 +322,12 @@ _FUNCTIONS = frozenset(
 
 def _negative(term: sp.Basic) -> bool:
     """A term printed with a minus sign: a negative number, or a product with a negative coefficient."""
-    if term.is_Number:
-        return bool(term.is_negative)
-    return bool(term.is_Mul and term.args[0].is_Number and term.args[0].is_negative)
+    first = term if term.is_Number else term.args[0] if term.is_Mul else None
+    if first is None or not first.is_Number:
+        return False
+    if isinstance(first, (sp.Rational, sp.Float)):  # finite: negative_number is its is_negative
+        return negative_number(first)
+    return bool(first.is_negative)
 
 
 def _add(expr: sp.Basic) -> str:

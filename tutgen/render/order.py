@@ -22,6 +22,7 @@ from functools import lru_cache
 import sympy as sp
 
 from tutgen.model.system import System
+from tutgen.render.signs import negative_number
 from tutgen.render.size import count_ops  # sympy's count, faster (issue 17)
 
 #: how many distinct expressions the memoised functions below remember: a worked solution asks for the
@@ -99,7 +100,12 @@ def factor_role(factor: sp.Basic, roles: dict[sp.Basic, Role]) -> Role:
 
 def positive_lead(expr: sp.Expr) -> tuple[int, sp.Expr]:
     """``(sign, body)`` with ``expr = sign · body`` and ``body`` not starting with a minus."""
-    if expr.could_extract_minus_sign():
+    first = expr if expr.is_Number else expr.args[0] if expr.is_Mul else None
+    if isinstance(first, (sp.Rational, sp.Float)):  # a finite coefficient: sympy's answer, unasked
+        negative = negative_number(first)
+    else:
+        negative = expr.could_extract_minus_sign()
+    if negative:
         return -1, -expr
     return 1, expr
 

@@ -24,11 +24,11 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 
 import sympy as sp
-from sympy.core.function import _coeff_isneg
 from sympy.core.operations import LatticeOp
 from sympy.simplify.radsimp import fraction
 
 from tutgen.engine.lazytable import LazyMatrix, LazyTable
+from tutgen.render.signs import coefficient_negative
 
 __all__ = ["count_ops", "count_ops_upto", "lower_bound_exceeds", "nonzero_count", "size_text"]
 
@@ -138,7 +138,7 @@ def count_ops(expr: sp.Basic, limit: int | None = None) -> int:
                 total += (a.p < 0) + (a.q != 1)
                 continue
         elif a.is_Mul or a.is_MatMul:
-            if _coeff_isneg(a):
+            if coefficient_negative(a):
                 total += 1  # NEG
                 a = a.as_two_terms()[1] if a.args[0] is minus_one else -a
             split = _plain_split(a)
@@ -161,7 +161,7 @@ def count_ops(expr: sp.Basic, limit: int | None = None) -> int:
         elif a.is_Add or a.is_MatAdd:
             negative = 0
             for term in a.args:
-                if _coeff_isneg(term):
+                if coefficient_negative(term):
                     negative += 1
                     todo.append(-term)
                 else:
