@@ -81,3 +81,45 @@ def test_free_body_diagrams_are_shared_the_same_way(monkeypatch: pytest.MonkeyPa
     first = freebody.free_body_diagram(base, "pendulum")
     assert freebody.free_body_diagram(heavier, "pendulum") is first
     assert freebody._FreeBodyBuilder(heavier, "pendulum", None).build() == first
+
+
+def test_a_free_body_diagram_reads_only_the_sign_of_a_forces_factor(monkeypatch: pytest.MonkeyPatch) -> None:
+    """An arrow shows a force's direction: the mass and g that multiply the weight are read as positive
+    only, so a sheet's variants of p03 share the cart's diagram; a negative value does not."""
+    monkeypatch.setattr(figure_build, "_BY_READS", {})
+    base = valued(load_system(SPECS / "tutorial-1" / "p03-cart-pendulum.yaml"))
+    by_name = {p.name: p.symbol for p in base.parameters}
+    factors = {by_name["m1"], by_name["g"]}
+    with reading() as read:
+        first = freebody.free_body_diagram(base, "cart")
+    assert {figure_build.Positive(s) for s in factors} <= read
+    assert not factors & read  # their values are not read
+    larger = valued(base, sp.Rational(13, 10), only=factors)
+    assert freebody.free_body_diagram(larger, "cart") is first
+    assert freebody._FreeBodyBuilder(larger, "cart", None).build() == first  # what is shared is what a fresh one is
+    heavier_down = valued(base, sp.Rational(-7, 10), only={by_name["m1"]})  # the weight points up
+    other = freebody.free_body_diagram(heavier_down, "cart")
+    assert other is not first
+    assert other != first
+    assert other == freebody._FreeBodyBuilder(heavier_down, "cart", None).build()
+
+
+def test_the_newton_euler_steps_diagrams_are_shared_across_masses_and_stiffnesses(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The step's forces (k x, m1 x_ddot, m2 (...)): other masses and stiffness, the same diagrams."""
+    from tutgen.engine.pipeline import derive
+    from tutgen.render.sections.newton_euler import _drawn_balances, diagram_forces
+
+    monkeypatch.setattr(figure_build, "_BY_READS", {})
+    base = valued(load_system(SPECS / "tutorial-1" / "p03-cart-pendulum.yaml"))
+    d = derive(base)
+    coords = {c.name: c.latex for c in d.system.coordinates}
+    forces = {b.body: diagram_forces(b, coords) for b in _drawn_balances(d)}
+    assert set(forces) == {"cart", "pendulum"}
+    by_name = {p.name: p.symbol for p in base.parameters}
+    other = valued(base, sp.Rational(13, 10), only={by_name["m1"], by_name["m2"], by_name["k"]})
+    for body, given in forces.items():
+        first = freebody.free_body_diagram(base, body, given)
+        assert freebody.free_body_diagram(other, body, given) is first
+        assert freebody._FreeBodyBuilder(other, body, given).build() == first

@@ -39,7 +39,7 @@ from tutgen.figure.axes import AxesDrawing
 from tutgen.figure.canvas import POSE_SIGNS
 from tutgen.figure.geometry import prim_box, segments_cross
 from tutgen.figure.labels import place_labels
-from tutgen.figure.pose import Pose, reading
+from tutgen.figure.pose import Pose, Positive, reading
 from tutgen.figure.scene import Box, Drawing, Point, Polyline, Primitive, Stroke
 from tutgen.memo import ByIdentity
 from tutgen.model.system import System
@@ -94,15 +94,30 @@ def drawn_by_reads(system: System, what: tuple[object, ...], draw: Callable[[Sys
         _BY_READS.pop(next(iter(_BY_READS)))
     _BY_READS[key] = seen
     for read, drawing in seen:
-        if all(values[symbol] == value for symbol, value in read):
+        if all(_same(values[symbol], value) for symbol, value in read):
             return drawing
     with reading() as symbols:
         drawing = draw(system)
-    read = tuple((symbol, value) for symbol, value in values.items() if symbol in symbols)
+    read = tuple(
+        (symbol, value if symbol in symbols else POSITIVE)
+        for symbol, value in values.items()
+        if symbol in symbols or Positive(symbol) in symbols
+    )
     if len(seen) >= DRAWN_MAX:
         del seen[0]
     seen.append((read, drawing))
     return drawing
+
+
+#: In a drawing's reads, a parameter of which the drawing used only that it is positive (:class:`Positive`).
+POSITIVE = object()
+
+
+def _same(value: object, read: object) -> bool:
+    """Whether a parameter's ``value`` gives the drawing that ``read`` (its value, or :data:`POSITIVE`) gave."""
+    if read is POSITIVE:
+        return isinstance(value, sp.Basic) and bool(value.is_number and value.is_positive)
+    return value == read
 
 
 def drawn_values(system: System) -> dict[sp.Symbol, float]:

@@ -33,7 +33,7 @@ from tutgen.figure.build import DRAWN_MAX, SystemBuilder, drawn_by_reads
 from tutgen.figure.canvas import TARGET_SIZE
 from tutgen.figure.geometry import prim_box
 from tutgen.figure.labels import place_labels
-from tutgen.figure.pose import Pose
+from tutgen.figure.pose import Pose, read_positive
 from tutgen.figure.scene import Box, Drawing, Point, Primitive
 from tutgen.figure.texlabel import is_safe_tex, name_tex, word_tex
 from tutgen.memo import ByIdentity
@@ -365,12 +365,23 @@ class _FreeBodyBuilder(SystemBuilder):
         o, r = self.pose.frames[body.name]
         return o + r @ v if point else r @ v
 
+    def force_vector(self, body: Body, force: BodyForce) -> np.ndarray:
+        """The force's vector in world axes up to a positive factor, which is all its arrow shows: each
+        parameter with a positive value that multiplies every component is divided out, and only its
+        sign is read (a sheet's variants with other masses or stiffnesses share one diagram)."""
+        values = [sp.sympify(v) for v in force.vector]
+        scale = _positive_scale(values, self.s)
+        if scale:
+            read_positive(scale)
+            values = [v / sp.Mul(*[b**e for b, e in scale.items()]) for v in values]
+        return self.world(body, values, force.frame, point=False)
+
     def draw_force(self, body: Body, force: BodyForce) -> None:
         at3 = self.world(body, force.at, force.at_frame, point=True)
         if force.toward is not None:
             vec = self.pose.point(force.toward.body, self.num.vec(force.toward.at)) - at3
         else:
-            vec = self.world(body, force.vector, force.frame, point=False)
+            vec = self.force_vector(body, force)
         names = f"force:{force.name}"
         tex = force.tex if force.tex and is_safe_tex(force.tex) else self.force_tex(force.label, force.name)
         norm = float(np.linalg.norm(vec))
@@ -439,7 +450,7 @@ class _FreeBodyBuilder(SystemBuilder):
             if force.moment or force.toward is not None:
                 continue
             at3 = self.world(body, force.at, force.at_frame, point=True)
-            vec = self.world(body, force.vector, force.frame, point=False)
+            vec = self.force_vector(body, force)
             norm = float(np.linalg.norm(vec))
             d = self.page_dir(at3, vec / norm) if norm > 1e-12 else None
             if d is None or not self.on_block(body.name, self.P(at3)):
@@ -520,6 +531,25 @@ class _FreeBodyBuilder(SystemBuilder):
         for b in pts[1:]:
             box = box.union(b)
         self.axes_at((box.x0 - 1.3, box.y0 - 0.2), 0.6)
+
+
+def _positive_scale(values: Sequence[sp.Expr], system: System) -> dict[sp.Symbol, int]:
+    """The parameters with a positive value that are a factor of every non-zero component, each with its
+    lowest power (``m g`` of a weight ``(0, -m g, 0)``; ``m2`` of ``-m2 (l a + b)``)."""
+    positive = {p.symbol for p in system.parameters if p.value is not None and p.value.is_positive is True}
+    common: dict[sp.Symbol, int] | None = None
+    for v in values:
+        if v == 0:
+            continue
+        powers: dict[sp.Symbol, int] = {}
+        for f in sp.Mul.make_args(v):
+            b, e = f.as_base_exp()
+            if b in positive and e.is_Integer and e > 0:
+                powers[b] = powers.get(b, 0) + int(e)
+        common = powers if common is None else {b: min(e, powers[b]) for b, e in common.items() if b in powers}
+        if not common:
+            return {}
+    return common or {}
 
 
 def components(force: BodyForce) -> tuple[BodyForce, ...]:

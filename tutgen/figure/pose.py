@@ -7,6 +7,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 
 import numpy as np
 import sympy as sp
@@ -17,15 +18,24 @@ from tutgen.model.system import GROUND, Body, ConstraintKind, JointKind, System
 Vec = np.ndarray
 
 #: While a drawing is made (:func:`reading`), the symbols whose numbers it has read: a drawing is a
-#: function of its system's structure and of these numbers only (tutgen.figure.build.draw_system).
-_READS: list[set[sp.Basic]] = []
+#: function of its system's structure and of these numbers only (tutgen.figure.build.draw_system), and
+#: of the signs of the symbols read as :class:`Positive`.
+_READS: list[set[sp.Basic | Positive]] = []
+
+
+@dataclass(frozen=True)
+class Positive:
+    """A read of a symbol's sign alone (:func:`read_positive`): the drawing is the same at every positive
+    value of it (a free-body diagram's arrow shows a force's direction, not its size)."""
+
+    symbol: sp.Basic
 
 
 @contextmanager
-def reading() -> Iterator[set[sp.Basic]]:
+def reading() -> Iterator[set[sp.Basic | Positive]]:
     """The symbols every :class:`Numbers` evaluates an expression of, inside the ``with`` (nested
     recordings each get their own set, and the outer one the inner one's too)."""
-    read: set[sp.Basic] = set()
+    read: set[sp.Basic | Positive] = set()
     _READS.append(read)
     try:
         yield read
@@ -39,6 +49,12 @@ def read(symbols: Iterable[sp.Basic]) -> None:
     """Mark ``symbols`` as read by the drawing being made (a number taken from the table directly)."""
     if _READS:
         _READS[-1].update(symbols)
+
+
+def read_positive(symbols: Iterable[sp.Basic]) -> None:
+    """Mark that the drawing being made used only that each of ``symbols`` is positive."""
+    if _READS:
+        _READS[-1].update(Positive(s) for s in symbols)
 
 
 def default_size(name: str) -> float:
