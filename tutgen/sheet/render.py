@@ -121,26 +121,31 @@ def sheet_context(
 _ENVS: dict[str, Any] = {}
 
 
-def render_sheet(context: dict[str, Any], kind: str, fmt: str) -> str:
-    """``kind`` "questions" or "solutions", ``fmt`` "md" or "tex" (a PDF compiles the "tex")."""
+def _sheet_env(fmt: str) -> Any:
+    """The environment of the shipped templates of ``fmt`` ("md" or "tex"), one per process: each template
+    is compiled once, and never looked at again on disk (a sheet includes a block's template 18 000 times
+    for 100 variants, and Jinja's default ``auto_reload`` stats the file each time)."""
     from tutgen.render.env import latex_env, markdown_env
 
-    if fmt not in _ENVS:  # one environment per process: templates are compiled once
-        _ENVS[fmt] = markdown_env() if fmt == "md" else latex_env()
+    if fmt not in _ENVS:
+        env = markdown_env() if fmt == "md" else latex_env()
+        env.auto_reload = False
+        _ENVS[fmt] = env
+    return _ENVS[fmt]
+
+
+def render_sheet(context: dict[str, Any], kind: str, fmt: str) -> str:
+    """``kind`` "questions" or "solutions", ``fmt`` "md" or "tex" (a PDF compiles the "tex")."""
     ext = "md" if fmt == "md" else "tex"
-    return str(_ENVS[fmt].get_template(f"sheet-{kind}.{ext}.j2").render(**context))
+    return str(_sheet_env(ext).get_template(f"sheet-{kind}.{ext}.j2").render(**context))
 
 
 def warm_templates(formats: Sequence[str]) -> None:
     """Compile the sheet templates of ``formats`` ("md", "tex", "pdf") in this process, before it forks
     its workers, so that each worker does not compile them again."""
-    from tutgen.render.env import latex_env, markdown_env
-
     for fmt in {"md" if f == "md" else "tex" for f in formats}:
-        if fmt not in _ENVS:
-            _ENVS[fmt] = markdown_env() if fmt == "md" else latex_env()
         for kind in ("questions", "solutions"):
-            _ENVS[fmt].get_template(f"sheet-{kind}.{fmt}.j2")
+            _sheet_env(fmt).get_template(f"sheet-{kind}.{fmt}.j2")
 
 
 def answer_key(results: str | Derivation, spec_name: str, student: str) -> str:

@@ -123,8 +123,10 @@ def replanned(plan: SheetPlan, derivations: Sequence[Any]) -> SheetPlan:
     names = file_names(plan.sheet, plan.variants, plan.formats, derivations)
     check_names(names)
     targets = tuple(plan.out / name for name in names)
+    checked = set(plan.targets)  # by plan_sheet (4 617 paths of a 100-variant sheet: 0.15 s)
     for target in targets:
-        check_output_path(target)
+        if target not in checked:
+            check_output_path(target)
     return dataclasses.replace(plan, targets=targets)
 
 
