@@ -40,6 +40,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_arms import measure, planar_spec, puma_spec  # noqa: E402  (a sibling script)
+from installed import installed_env  # noqa: E402
 
 REPEAT_BELOW = 20.0  # seconds: a slower command is run once
 
@@ -57,7 +58,7 @@ def _children_cpu() -> float:
 def knows_expand(tree: Path) -> bool:
     """Whether the tutgen in ``tree`` has ``solve --expand`` (a baseline from before it wrote every entry
     anyway, and is run without the option)."""
-    env = {**os.environ, "PYTHONPATH": str(tree)}
+    env = installed_env(tree)
     run = subprocess.run(
         [sys.executable, "-m", "tutgen", "solve", "--help"], cwd=tree, env=env, capture_output=True, text=True
     )
@@ -69,7 +70,7 @@ def wall(cmd: list[str], cwd: Path, repeat: int, timeout: float) -> tuple[float 
     the median CPU time of the same runs is appended to ``CPU``."""
     times: list[float] = []
     cpus: list[float] = []
-    env = {**os.environ, "PYTHONPATH": str(cwd)}
+    env = installed_env(cwd)
     for _ in range(max(repeat, 1)):
         cpu = _children_cpu()
         start = time.perf_counter()
@@ -171,6 +172,7 @@ def run(opts: argparse.Namespace, tmp: Path) -> int:
     if opts.no_spec_arm:
         commands = [(name, cmd) for name, cmd in commands if "puma560.yaml" not in name]
     print(f"load average at start: {os.getloadavg()[0]:.1f} (2 cores, shared); medians of {opts.repeat} fresh runs")
+    print("modules byte-compiled first, as `pip install` leaves them (benchmarks/installed.py)")
     print("\nderivation only, in process (bench_arms.py workers, imports excluded):")
     kane_record = derivation_record("kane", "puma6", opts.timeout)
     program_record = derivation_record("nested", "puma6", opts.timeout)

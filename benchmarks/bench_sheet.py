@@ -32,6 +32,9 @@ from io import BytesIO
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from installed import installed_env  # noqa: E402  (a sibling module)
+
 SHEET = Path("specs") / "tutorial-1" / "sheet.yaml"
 TARGET_SECONDS = 15.0
 TARGET_SPEEDUP = 1.8
@@ -57,7 +60,7 @@ def run(tree: Path, label: str, variants: int, workers: int, seed: int, tmp: Pat
     out = tmp / f"out-{label}-{workers}"
     cmd = [sys.executable, "-m", "tutgen", "sheet", str(tree / SHEET), "-o", str(out), "-n", str(variants)]
     cmd += ["-f", "md", "-f", "tex", "--workers", str(workers), "--seed", str(seed), "--no-progress", "--timeout", "0"]
-    env = {**os.environ, "PYTHONPATH": str(tree)}
+    env = installed_env(tree)
     cpu = _children_cpu()
     start = time.perf_counter()
     done = subprocess.run(cmd, cwd=tree, env=env, capture_output=True, text=True)
@@ -96,6 +99,7 @@ def main() -> None:
 
     print(f"load average before: {os.getloadavg()[0]:.1f} (other work on the machine slows every figure)")
     print(f"tutgen sheet {SHEET}: {args.variants} variants, md + tex, on {os.cpu_count()} cores, fresh processes")
+    print("modules byte-compiled first, as `pip install` leaves them (benchmarks/installed.py)")
     with tempfile.TemporaryDirectory() as tmpdir:
         tmp = Path(tmpdir)
         trees = {"now": ROOT}
