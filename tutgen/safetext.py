@@ -63,6 +63,8 @@ def csv_cell(text: str) -> str:
     would otherwise read the cell as a formula. A plain number (``-3.5``, ``+1e3``) is left as it is, so
     marks and values stay numbers."""
     clean = _CONTROL.sub("", _ESCAPE_SEQUENCE.sub("", text.replace("\t", " ")))
-    if text.startswith(_FORMULA_START) and not _NUMBER.fullmatch(clean):
+    # as written (a tab or a carriage return first), and once cleaned (a control character or an escape
+    # sequence, which the cleaning removes, before the "=")
+    if (text.startswith(_FORMULA_START) or clean.startswith(_FORMULA_START)) and not _NUMBER.fullmatch(clean):
         return "'" + clean
     return clean
