@@ -29,6 +29,7 @@ Blocks, the items of ``section.blocks``:
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
@@ -137,13 +138,20 @@ def para(*parts: Part | list[Part]) -> Block:
     return {"kind": "text", "parts": flat}
 
 
+_LISTED = re.compile(r"[\\{}]")
+
+
 def split_list(tex: str) -> list[str]:
     """The equations of a display written as a list ``a = 1,\\quad b = 2``, each on its own: a LaTeX
     template may set them on separate lines (Markdown shows ``tex`` as one line)."""
     lines: list[str] = []
     depth, start, sep = 0, 0, ",\\quad "
-    i = 0
-    while i < len(tex):
+    i, n = 0, len(tex)
+    while i < n:
+        found = _LISTED.search(tex, i)  # a command or a brace: nothing else changes anything
+        if found is None:
+            break
+        i = found.start()
         ch = tex[i]
         if ch == "\\" and tex.startswith(sep[1:], i) and depth == 0 and i > 0 and tex[i - 1] == ",":
             lines.append(tex[start : i - 1])
@@ -153,7 +161,7 @@ def split_list(tex: str) -> list[str]:
         if ch == "\\":
             i += 2
             continue
-        depth += {"{": 1, "}": -1}.get(ch, 0)
+        depth += 1 if ch == "{" else -1
         i += 1
     lines.append(tex[start:])
     return [ln.strip() for ln in lines]

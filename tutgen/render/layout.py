@@ -98,32 +98,44 @@ _COMMAND = re.compile(r"\\([A-Za-z]+|.)", re.S)
 _MEMO = 1 << 15
 
 
+#: what changes a braced group's depth: an escaped character (skipped with its backslash) and the braces
+_BRACE = re.compile(r"[\\{}]")
+
+
 def _group(cur: _Cursor) -> str:
     """The next argument: a braced group's contents, a command, or one character."""
-    while cur.peek() == " ":
-        cur.pos += 1
-    if cur.eof():
+    text, n, pos = cur.text, len(cur.text), cur.pos
+    while pos < n and text[pos] == " ":
+        pos += 1
+    if pos >= n:
+        cur.pos = pos
         return ""
-    ch = cur.peek()
+    ch = text[pos]
     if ch == "{":
-        depth, start = 0, cur.pos
-        while not cur.eof():
-            c = cur.text[cur.pos]
+        # from brace to brace (not character by character: a group is a whole row of a matrix)
+        depth, start, i = 0, pos, pos
+        while True:
+            m = _BRACE.search(text, i)
+            if m is None:
+                cur.pos = max(i, n)
+                return text[start + 1 :]
+            j = m.start()
+            c = text[j]
             if c == "\\":
-                cur.pos += 2
+                i = j + 2
                 continue
-            depth += {"{": 1, "}": -1}.get(c, 0)
-            cur.pos += 1
+            depth += 1 if c == "{" else -1
+            i = j + 1
             if depth == 0:
-                return cur.text[start + 1 : cur.pos - 1]
-        return cur.text[start + 1 :]
+                cur.pos = i
+                return text[start + 1 : i - 1]
     if ch == "\\":
         # a command, or a control symbol (\, \; \{); a backslash that ends the text (a piece cut just
         # after the thin space of ``\right)\,``) is taken as it is, never an error
-        m = _COMMAND.match(cur.text, cur.pos)
-        cur.pos = m.end() if m is not None else len(cur.text)
+        m = _COMMAND.match(text, pos)
+        cur.pos = m.end() if m is not None else n
         return m.group(0) if m is not None else "\\"
-    cur.pos += 1
+    cur.pos = pos + 1
     return ch
 
 
@@ -144,8 +156,16 @@ def split_top(tex: str, separator: str) -> list[str]:
     """``tex`` cut at every top-level occurrence of ``separator`` (``&`` or ``\\\\``): not inside braces or
     an inner environment."""
     pieces: list[str] = []
-    depth, env, start, i = 0, 0, 0, 0
-    while i < len(tex):
+    depth, env, start, i, n = 0, 0, 0, 0, len(tex)
+    special = _SPECIAL.get(separator[:1])
+    if special is None:
+        special = _SPECIAL[separator[:1]] = re.compile("[\\\\{}" + re.escape(separator[:1]) + "]")
+    while i < n:
+        # only a backslash, a brace or the separator's first character changes anything: jump to the next
+        found = special.search(tex, i)
+        if found is None:
+            break
+        i = found.start()
         if tex.startswith("\\begin{", i):
             env += 1
         elif tex.startswith("\\end{", i):
@@ -159,10 +179,17 @@ def split_top(tex: str, separator: str) -> list[str]:
         if ch == "\\":
             i += 2
             continue
-        depth += {"{": 1, "}": -1}.get(ch, 0)
+        if ch == "{":
+            depth += 1
+        elif ch == "}":
+            depth -= 1
         i += 1
     pieces.append(tex[start:])
     return pieces
+
+
+#: by a separator's first character: what :func:`split_top` stops at
+_SPECIAL: dict[str, re.Pattern[str]] = {}
 
 
 def _matrix_width(body: str, scale: float) -> float:
@@ -181,11 +208,20 @@ def tex_width(tex: str, scale: float = 1.0, display: bool = True) -> float:
     and gaps, an ``aligned`` block as its widest row, the spacing of binary operators and relations.
     ``display`` is the display style (fractions at full size), ``scale`` the font size relative to the text."""
     cur = _Cursor(tex)
+    n = len(tex)
     total = 0.0
     last_script = 0.0  # width of the script just set, so a sub- and superscript pair counts once
     after_operand = False  # a + or − is binary only after an operand
-    while not cur.eof():
-        ch = cur.peek()
+    while cur.pos < n:
+        ch = tex[cur.pos]
+        glyph = _GLYPHS.get(ch)
+        if glyph is not None:  # a plain character, most of a formula: as at the end of this loop
+            cur.pos += 1
+            last_script = 0.0
+            total += glyph[0] * scale
+            if glyph[1] is not None:
+                after_operand = glyph[1]
+            continue
         if ch in " \n":
             cur.pos += 1
             continue
@@ -284,39 +320,51 @@ def tex_width(tex: str, scale: float = 1.0, display: bool = True) -> float:
         if ch in "+-" or ch == "\u2212":
             total += (_BIN if after_operand else 8.52) * scale
             after_operand = False
-        elif ch in "=<>":
-            total += _REL * scale
-            after_operand = False
-        elif ch in "([":
-            total += 4.3 * scale
-            after_operand = False
-        elif ch in ")]":
-            total += 4.3 * scale
-            after_operand = True
-        elif ch in ",;":
-            total += (3.0 + 3 * _MU) * scale
-            after_operand = False
-        elif ch == ".":
-            total += 3.0 * scale
-        elif ch == "'":
-            total += 3.0 * scale
-        elif ch == "|":
-            total += 3.0 * scale
-        elif ch == "/":
-            total += 5.5 * scale
-        elif ch.isdigit():
-            total += _W_DIGIT * scale
-            after_operand = True
-        elif ch.isalpha():
-            total += _WIDE.get(ch, _W_UPPER if ch.isupper() else _W_LOWER) * scale
-            after_operand = True
-        else:
-            total += 5.5 * scale
-            after_operand = True
+            continue
+        w, operand = _glyph(ch)
+        total += w * scale
+        if operand is not None:
+            after_operand = operand
     return total
 
 
+#: a plain character's width and what it makes of a following + or − (an operand: True, not: False, as
+#: it was: None), by :func:`_glyph`; every character but white space, scripts, braces, ``&``, ``\\`` and signs
+_GLYPHS: dict[str, tuple[float, bool | None]] = {}
+
+
+def _glyph(ch: str) -> tuple[float, bool | None]:
+    found = _GLYPHS.get(ch)
+    if found is not None:
+        return found
+    if ch in "=<>":
+        found = (_REL, False)
+    elif ch in "([":
+        found = (4.3, False)
+    elif ch in ")]":
+        found = (4.3, True)
+    elif ch in ",;":
+        found = (3.0 + 3 * _MU, False)
+    elif ch in ".'|":
+        found = (3.0, None)
+    elif ch == "/":
+        found = (5.5, None)
+    elif ch.isdigit():
+        found = (_W_DIGIT, True)
+    elif ch.isalpha():
+        found = (_WIDE.get(ch, _W_UPPER if ch.isupper() else _W_LOWER), True)
+    else:
+        found = (5.5, True)
+    if len(_GLYPHS) < 4096:
+        _GLYPHS[ch] = found
+    return found
+
+
 # --- cutting a formula at its top-level operators -------------------------------------------------------
+
+
+#: what :func:`_scan` stops at: a command, a bracket, ``=``, ``+``, ``-``
+_SCANNED = re.compile(r"[\\{}()\[\]=+\-]")
 
 
 @lru_cache(maxsize=_MEMO)
@@ -325,8 +373,12 @@ def _scan(tex: str) -> tuple[tuple[int, str], ...]:
     ``("add", i)`` before a binary ``+`` or ``-`` (sympy prints them with a space on each side)."""
     points: list[tuple[int, str]] = []
     depth = 0
-    i = 0
-    while i < len(tex):
+    i, n = 0, len(tex)
+    while i < n:
+        found = _SCANNED.search(tex, i)  # nothing else changes the depth or makes a break point
+        if found is None:
+            break
+        i = found.start()
         if tex.startswith("\\left", i) and not tex[i + 5 : i + 6].isalpha():
             depth += 1
             i += 6
