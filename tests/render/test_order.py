@@ -203,3 +203,40 @@ def test_a_group_with_sines_and_cosines_squared_keeps_its_value() -> None:
     order.forget()
     found = order.arranged_terms(expr, levels)
     assert found is None or sp.expand(sum(s * b for s, b in found) - expr) == 0
+
+
+def test_already_expanded_only_where_expand_changes_nothing() -> None:
+    """``already_expanded`` spares ``sympy.expand`` its walks (issue 17); it may say False of an expanded
+    sum, never True of one that expand would change. Checked on every sum of the tutorial's results and
+    their variants' numbers, and on forms each hint of expand rewrites."""
+    from tutgen.render.order import already_expanded
+
+    x, y, z, q1, q2 = sp.symbols("x y z q1 q2")
+    m = sp.Symbol("m", positive=True)
+    rewritten = [
+        (x + y) ** 2,
+        sp.Mul(x, y + z, evaluate=False),
+        sp.exp(x + y),
+        sp.log(m * sp.Symbol("n", positive=True)),
+        sp.cos(sp.Mul(2, q1 + q2, evaluate=False)) ** 2,
+        sp.sin(q1 * (q2 + 1)),
+    ]
+    for e in rewritten:
+        assert sp.expand(e) != e, e  # (the test's own premise)
+        assert not already_expanded(e), e
+    kept = [x, 2 * x * y**2, sp.Rational(3, 2) * m * sp.cos(q1 + 2 * q2) ** 2 - sp.Float("0.5") * x * sp.sin(q1)]
+    for e in kept:
+        assert already_expanded(e) and sp.expand(e) == e, e
+    sums = 0
+    for spec in sorted((SPECS / "tutorial-1").glob("p*.yaml")):
+        d = solved(str(spec))[1]
+        results = [d.kinetic_energy, d.potential_energy, d.lagrangian]
+        results += [*(d.equations_of_motion or []), *(d.mass_matrix or [])]
+        values = {p.symbol: sp.Rational(7, 4) for p in d.system.parameters}
+        for e in [r for r in results if isinstance(r, sp.Expr)]:
+            for sub in sp.preorder_traversal(e):
+                for candidate in (sub, sub.xreplace(values)):
+                    if isinstance(candidate, sp.Expr) and candidate.is_Add and already_expanded(candidate):
+                        sums += 1
+                        assert sp.expand(candidate) == candidate, candidate
+    assert sums > 100

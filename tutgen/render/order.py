@@ -283,10 +283,45 @@ def arranged_terms(expr: sp.Expr, levels: _Levels) -> list[Term] | None:
     return list(found) if found is not None else None
 
 
+def already_expanded(expr: sp.Expr) -> bool:
+    """Whether ``sympy.expand(expr)`` is ``expr`` itself, read off its form (issue 17: four in five of the
+    sums a sheet arranges are, and ``expand`` walks a sum once per hint to find nothing to do): a sum of
+    products of numbers, symbols, powers of a symbol, and sines and cosines (and their integer powers)
+    of a sum of symbols with rational coefficients. None of expand's default hints changes any of these
+    (no product over a sum, no power of a sum or of a product, no exponent that is a sum, no ``exp`` or
+    ``log``); ``False`` for anything else, which ``expand`` then decides (tests/render/test_order.py)."""
+    for term in sp.Add.make_args(expr):
+        for factor in sp.Mul.make_args(term):
+            if factor.is_Number or factor.is_Symbol:
+                continue
+            if factor.is_Pow:
+                base, exp = factor.args
+                if (base.is_Symbol and exp.is_Rational) or (exp.is_Integer and _trig_of_linear(base)):
+                    continue
+                return False
+            if not _trig_of_linear(factor):
+                return False
+    return True
+
+
+def _trig_of_linear(f: sp.Basic) -> bool:
+    """``sin`` or ``cos`` of a sum of symbols with rational coefficients (``q_1 + 2 q_2``)."""
+    if not isinstance(f, (sp.sin, sp.cos)):
+        return False
+    for t in sp.Add.make_args(f.args[0]):
+        if not (
+            t.is_Symbol
+            or t.is_Rational
+            or (t.is_Mul and len(t.args) == 2 and t.args[0].is_Rational and t.args[1].is_Symbol)
+        ):
+            return False
+    return True
+
+
 @lru_cache(maxsize=MEMO_SIZE)
 def _arranged_terms(expr: sp.Expr, levels: _Levels) -> tuple[Term, ...] | None:
     """:func:`arranged_terms`, remembered per expression and printer (``levels``)."""
-    expanded = sp.expand(expr)
+    expanded = expr if already_expanded(expr) else sp.expand(expr)
     if not isinstance(expanded, sp.Add):
         return None
     try:  # the printed form keeps the value: each group's coefficient is tested (_coefficient); the
