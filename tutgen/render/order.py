@@ -214,8 +214,8 @@ def _coefficient(coeffs: tuple[sp.Expr, ...], level: int, levels: _Levels) -> Te
     # is the sum's (the cheap test, which nearly always decides), or the two differ by zero (numbers of
     # other kinds, 0.5 and 1/2, cancel). Tested here, once per group (the groups repeat), rather than on
     # the whole arranged sum: the groups' terms are the sum's, so the sum keeps its value when each does
-    printed = sp.expand(sign * body)
-    if printed != given and sp.expand(printed - given) != 0:
+    printed = expanded_form(sign * body)
+    if printed != given and expanded_form(printed - given) != 0:
         raise _Unkept
     return sign, body
 
@@ -304,6 +304,11 @@ def already_expanded(expr: sp.Expr) -> bool:
     return True
 
 
+def expanded_form(expr: sp.Expr) -> sp.Expr:
+    """``sympy.expand(expr)``, without its walks when ``expr`` is :func:`already_expanded`."""
+    return expr if already_expanded(expr) else sp.expand(expr)
+
+
 def _trig_of_linear(f: sp.Basic) -> bool:
     """``sin`` or ``cos`` of a sum of symbols with rational coefficients (``q_1 + 2 q_2``)."""
     if not isinstance(f, (sp.sin, sp.cos)):
@@ -321,7 +326,7 @@ def _trig_of_linear(f: sp.Basic) -> bool:
 @lru_cache(maxsize=MEMO_SIZE)
 def _arranged_terms(expr: sp.Expr, levels: _Levels) -> tuple[Term, ...] | None:
     """:func:`arranged_terms`, remembered per expression and printer (``levels``)."""
-    expanded = expr if already_expanded(expr) else sp.expand(expr)
+    expanded = expanded_form(expr)
     if not isinstance(expanded, sp.Add):
         return None
     try:  # the printed form keeps the value: each group's coefficient is tested (_coefficient); the
@@ -402,7 +407,7 @@ def _perfect_squares(expr: sp.Expr, levels: _Levels) -> sp.Expr | None:
     free = expr.free_symbols
     if free & {*levels.rates, *levels.accelerations} or not free & set(levels.coordinates):
         return None
-    expanded = sp.expand(expr)
+    expanded = expanded_form(expr)
     if not isinstance(expanded, sp.Add):
         return None
     groups: dict[sp.Expr, list[sp.Expr]] = {}
@@ -416,7 +421,7 @@ def _perfect_squares(expr: sp.Expr, levels: _Levels) -> sp.Expr | None:
     for mass in sorted(groups, key=lambda m: (m == 1, sp.default_sort_key(m))):
         coefficient = sp.Add(*groups[mass])
         if mass == 1:  # what no mass multiplies is never printed as a square: its terms as they are
-            terms += _arrange([c for c in sp.Add.make_args(sp.expand(coefficient))], 0, levels)
+            terms += _arrange([c for c in sp.Add.make_args(expanded_form(coefficient))], 0, levels)
             continue
         try:
             factored = (
@@ -445,7 +450,7 @@ def _perfect_squares(expr: sp.Expr, levels: _Levels) -> sp.Expr | None:
             inner = arranged(base, levels) if isinstance(base, sp.Add) else base
             terms.append((sign, _times(mass * rest, sp.Pow(inner, 2, evaluate=False))))
         else:
-            terms += _arrange([mass * c for c in sp.Add.make_args(sp.expand(coefficient))], 0, levels)
+            terms += _arrange([mass * c for c in sp.Add.make_args(expanded_form(coefficient))], 0, levels)
     if not found:
         return None
     result = _plus(terms)

@@ -25,6 +25,7 @@ from tutgen.render.blocks import (
     stacked,
 )
 from tutgen.render.layout import LINE_WIDTH_PT, tex_width
+from tutgen.render.order import expanded_form
 from tutgen.render.printer import TexPrinter
 from tutgen.render.size import nonzero_count
 from tutgen.spec.units import DIMENSIONS, Dimension
@@ -278,7 +279,7 @@ def least_value(det: sp.Expr, coordinates: set[sp.Symbol]) -> sp.Expr | None:
     such a sum; the parameters in ``det`` must already be positive symbols."""
     x = sp.Wild("x")
     forms = [
-        sp.expand(f)
+        expanded_form(f)
         for f in (det, det.replace(sp.cos(x) ** 2, 1 - sp.sin(x) ** 2), det.replace(sp.sin(x) ** 2, 1 - sp.cos(x) ** 2))
     ]
     for form in forms:
