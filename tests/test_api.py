@@ -7,6 +7,7 @@ import doctest
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -67,3 +68,19 @@ def test_bad_spec_text_is_a_located_error() -> None:
     with pytest.raises(SpecErrors) as caught:
         tutgen.loads("tutgen: 1\ntitle: t\nbodys: {}\n", "bad.yaml")
     assert str(caught.value.errors[0]).startswith("bad.yaml:3:1")
+
+
+def test_many_output_paths_are_checked_with_one_limit_per_directory(tmp_path: Path) -> None:
+    """A sheet's thousands of paths share each directory's NAME_MAX (``limits``); a name too long is
+    refused all the same, first in its directory or not."""
+    from tutgen.api import check_output_path
+    from tutgen.errors import UsageError
+
+    limits: dict[Path, int] = {}
+    for name in ("a.md", "b.md", "c.md"):
+        check_output_path(tmp_path / "out" / name, limits=limits)
+    assert set(limits) == {tmp_path / "out"}
+    with pytest.raises(UsageError, match="bytes long; the file system allows"):
+        check_output_path(tmp_path / "out" / ("n" * 300 + ".md"), limits=limits)
+    with pytest.raises(UsageError, match="bytes long; the file system allows"):
+        check_output_path(tmp_path / ("d" * 300) / "a.md", limits=limits)
