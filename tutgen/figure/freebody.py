@@ -536,7 +536,9 @@ class _FreeBodyBuilder(SystemBuilder):
 def _positive_scale(values: Sequence[sp.Expr], system: System) -> dict[sp.Symbol, int]:
     """The parameters with a positive value that are a factor of every non-zero component, each with its
     lowest power (``m g`` of a weight ``(0, -m g, 0)``; ``m2`` of ``-m2 (l a + b)``)."""
-    positive = {p.symbol for p in system.parameters if p.value is not None and p.value.is_positive is True}
+    positive = {
+        p.symbol for p in system.parameters if p.value is not None and p.value.is_number and p.value.is_positive
+    }
     common: dict[sp.Symbol, int] | None = None
     for v in values:
         if v == 0:

@@ -81,14 +81,11 @@ _SYMBOLS = {"partial": 6.2, "infty": 10.9, "ell": 4.6, "sum": 11.6, "prod": 10.0
 
 @dataclass
 class _Cursor:
+    """A position in a formula (the scanners read ``text[pos]`` directly: a method call per character
+    was most of their time)."""
+
     text: str
     pos: int = 0
-
-    def peek(self) -> str:
-        return self.text[self.pos] if self.pos < len(self.text) else ""
-
-    def eof(self) -> bool:
-        return self.pos >= len(self.text)
 
 
 _COMMAND = re.compile(r"\\([A-Za-z]+|.)", re.S)
