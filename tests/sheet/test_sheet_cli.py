@@ -199,6 +199,38 @@ def test_sheet_force_replaces_the_whole_output(small: tuple[Path, Path], tmp_pat
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]  # no temporary directory, no lock file left
 
 
+@pytest.mark.parametrize("workers", ["1", "2"])
+def test_sheet_files_a_worker_cannot_write_leave_the_old_output(
+    small: tuple[Path, Path], tmp_path: Path, monkeypatch: pytest.MonkeyPatch, workers: str
+) -> None:
+    """The workers write each sheet's files into the staging directory themselves (issue 17); a file one
+    of them cannot write (a full disk) is the user's error, named as it would be under -o, and leaves the
+    old output as it was, with no staging directory and no lock file beside it."""
+    import builtins
+    import errno
+
+    sheet, _ = small
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "questions.md").write_text("old\n", encoding="utf-8")
+    real_open = builtins.open
+
+    def failing_open(path: object, *args: object, **kwargs: object) -> object:
+        if str(path).endswith("v002/solutions.md"):
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real_open(path, *args, **kwargs)  # type: ignore[call-overload]
+
+    monkeypatch.setattr(builtins, "open", failing_open)  # a pool's workers are forked: they have it too
+    result = run("sheet", sheet, "-o", out, "-f", "md", "--variants", "2", "-j", workers, "--force")
+    monkeypatch.undo()
+    assert result.exit_code == EXIT_USAGE, result.output
+    where = out / "variants" / "v002" / "solutions.md"
+    assert f"cannot write {where}: No space left on device; nothing was written" in result.output
+    assert "Traceback" not in result.output
+    assert tree(out) == {"questions.md": b"old\n"}
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
+
+
 def test_sheet_bad_files_are_located_without_traceback(tmp_path: Path) -> None:
     sheet = tmp_path / "sheet.yaml"
     sheet.write_text(f"title: T\nproblems:\n  - spec: {TUTORIAL / 'p03-cart-pendulum.yaml'}\n    vary: {{m3: 1}}\n")

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import collections
 import dataclasses
+from pathlib import Path
 
 import pytest
 
@@ -111,3 +112,29 @@ def test_a_problem_that_cannot_be_derived_in_a_worker_is_reported_as_here(monkey
         errors.append((type(info.value), str(info.value)))
     assert errors[0] == errors[1]
     assert "p03-cart-pendulum.yaml" in errors[0][1] and "no such luck" in errors[0][1]
+
+
+def test_a_staged_build_writes_the_same_files_in_its_workers(tmp_path: Path) -> None:
+    """Given a staging directory, the workers write each sheet's files there themselves (issue 17: the
+    parent wrote 4600 files after the pool had finished) and send back None for them; the files are those
+    a build in memory returns, byte for byte, and only the index is left for the parent to write."""
+    from tutgen.sheet.executor import ProcessExecutor
+
+    sheet = load_sheet(SPECS / "tutorial-1" / "sheet.yaml")
+    sheet = dataclasses.replace(sheet, problems=tuple(p for p in sheet.problems if p.key[:3] in ("p02", "p10")))
+    derivations, _ = derive_problems(sheet)
+    kwargs = {"formats": ("md", "tex"), "variants": variant_ids(3), "seed": 4, "derivations": derivations}
+    memory = build_sheet(sheet, **kwargs)  # type: ignore[arg-type]
+    for executor in (None, ProcessExecutor(2)):
+        root = tmp_path / ("serial" if executor is None else "pool")
+        root.mkdir()
+        staged = build_sheet(sheet, executor=executor, stage=lambda r=root: (r, Path("out")), **kwargs)  # type: ignore[arg-type]
+        assert [n for n, _ in staged.files] == [n for n, _ in memory.files]
+        left = {n for n, content in staged.files if content is not None}
+        assert left == {"variants/index.csv"}
+        on_disk = {str(p.relative_to(root)) for p in root.rglob("*") if p.is_file()}
+        assert on_disk == {n for n, _ in memory.files} - left
+        for name, content in memory.files:
+            if name not in left:
+                got = (root / name).read_bytes()
+                assert got == (content if isinstance(content, bytes) else content.encode("utf-8")), name

@@ -1,7 +1,9 @@
 """Building a sheet: derive each problem once, then every variant by substitution, gathered in memory.
 
-Nothing is written here: :func:`build_sheet` returns every file's path (relative to the output
-directory) and content, in a fixed order, and the CLI writes them only when everything succeeded. The
+:func:`build_sheet` returns every file's path (relative to the output directory) and content, in a fixed
+order; the CLI writes them into a staging directory and moves it to the output only when everything
+succeeded (tutgen/sheet/run.py). Given that staging directory (``stage``), the workers write each sheet's
+files into it themselves as they build it, and the content returned is None for those. The
 output layout (docs/sheets.md)::
 
     questions.<fmt>, solutions.<fmt>                 the sheet at the nominal values
@@ -20,6 +22,7 @@ import io
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 from tutgen.engine.derivation import Derivation
@@ -77,6 +80,7 @@ class Shared:
     seed: int
     method: str | None  # the --method override, or None: each spec's own `methods:`
     has_variants: bool = False  # an LMS export holds the variants, or (without) the nominal sheet
+    stage: tuple[str, str] | None = None  # where the jobs write their files, and the -o it stands for
     units: dict[tuple[Any, ...], UnitResult] = field(default_factory=dict)  # unit_key -> its result
 
 
@@ -89,7 +93,7 @@ class Job:
 
 @dataclass(frozen=True)
 class JobResult:
-    files: tuple[tuple[str, str | bytes], ...]
+    files: tuple[tuple[str, str | bytes | None], ...]  # None: written into Shared.stage
     values: tuple[tuple[str, str, str], ...]  # (problem, parameter, value as written)
     rederived: tuple[str, ...]  # the problems derived afresh for this variant
     derive_seconds: float
@@ -99,7 +103,7 @@ class JobResult:
 
 @dataclass
 class SheetBuild:
-    files: list[tuple[str, str | bytes]] = field(default_factory=list)
+    files: list[tuple[str, str | bytes | None]] = field(default_factory=list)  # None: written to the stage
     derive_seconds: float = 0.0  # the symbolic derivations (once per problem, plus any variant re-derived)
     render_seconds: float = 0.0  # substitution, views, templates, keys, concrete specs, PDFs
     rederived: list[tuple[str, str]] = field(default_factory=list)  # (variant, problem)
@@ -345,8 +349,15 @@ def build_job(shared: Shared, job: Job) -> JobResult:
                     files.append((f"{prefix}{kind}.pdf", pdf))
     files += [(f"{prefix}{name}", svg) for name, svg in figures.values()]
     files += [(f"{prefix}{name}", content) for a in assets for name, content in a.files]
+    written: list[tuple[str, str | bytes | None]] = list(files)
+    if shared.stage is not None:
+        from tutgen.sheet.run import write_files
+
+        root, shown = shared.stage
+        write_files(Path(root), files, Path(shown))
+        written = [(name, None) for name, _ in files]
     total = time.perf_counter() - start
-    return JobResult(tuple(files), tuple(values_out), tuple(rederived), 0.0, total, tuple(lms))
+    return JobResult(tuple(written), tuple(values_out), tuple(rederived), 0.0, total, tuple(lms))
 
 
 def _lms(base: ProblemBase, view: Any, results: str, marks: str, system: Any, variant: str, label: str) -> Any:
@@ -446,8 +457,13 @@ def build_sheet(
     timeout: float | None = None,
     derivations: Sequence[Derivation] | None = None,
     on_done: Callable[[], None] | None = None,
+    stage: Callable[[], tuple[Path, Path]] | None = None,
 ) -> SheetBuild:
-    """Every file of the sheet and of its variants, in a fixed order (see the module's docstring)."""
+    """Every file of the sheet and of its variants, in a fixed order (see the module's docstring).
+
+    ``stage``, for an executor whose workers share this machine's files, gives (once the sheets are about
+    to be built) a directory for the files and the output it stands for (named in an error): each sheet's
+    files are written there by the worker that builds it, and their content in the result is None."""
     from tutgen.sheet.executor import SerialExecutor
 
     out = SheetBuild()
@@ -482,6 +498,9 @@ def build_sheet(
         out.derive_seconds += r.derive_seconds
         out.render_seconds += r.render_seconds
     _warm_templates(shared.formats)  # compiled once here, inherited by the workers of a fork
+    if stage is not None:
+        root, shown = stage()
+        shared = dataclasses.replace(shared, stage=(str(root), str(shown)))
     jobs = [Job(None), *(Job(v) for v in variants)]
     results = run.map(build_job, shared, jobs, None)
     if on_done:

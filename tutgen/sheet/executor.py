@@ -54,9 +54,13 @@ class Executor(Protocol):
     @property
     def workers(self) -> int: ...
 
+    #: whether the jobs run on this machine (and can write files where the caller reads them)
+    local: bool
+
 
 class SerialExecutor:
     workers = 1
+    local = True  # its jobs run on this machine: they can write the output's files themselves
 
     def map(
         self, fn: Callable[[S, J], R], shared: S, jobs: Sequence[J], on_done: Callable[[], None] | None = None
@@ -152,6 +156,8 @@ class ProcessExecutor:
     """A pool of ``workers`` processes (default: one per core); the shared argument is handed to each
     worker once, when it starts."""
 
+    local = True
+
     def __init__(self, workers: int | None = None) -> None:
         self._workers = workers or os.cpu_count() or 1
 
@@ -192,6 +198,8 @@ class ProcessExecutor:
 class DaskExecutor:
     """The same interface on a Dask distributed cluster: ``DaskExecutor("tcp://host:8786")`` or
     ``DaskExecutor(client=Client(...))``. The shared argument is scattered to every worker once."""
+
+    local = False  # its workers may be on other machines: they send the files back
 
     def __init__(self, address: str | None = None, client: Any = None) -> None:
         try:

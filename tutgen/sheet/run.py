@@ -255,10 +255,20 @@ def _read_pid(fd: int) -> str:
     return text if text.isdigit() else ""
 
 
-def write_tree(plan: SheetPlan, files: Sequence[tuple[str, str | bytes]]) -> None:
+def write_tree(plan: SheetPlan, files: Sequence[tuple[str, str | bytes | None]]) -> None:
     """Write every file into a temporary directory beside -o, then put it in -o's place (replacing an
     existing output, which :func:`plan_sheet` allowed); on any error or interruption the temporary
     directory is removed and -o is as it was."""
+    with staging(plan) as tmp:
+        write_files(tmp, files, plan.out)
+        put_in_place(plan, tmp)
+
+
+@contextlib.contextmanager
+def staging(plan: SheetPlan) -> Iterator[Path]:
+    """A new temporary directory beside -o for the sheet's files (written there by :func:`write_files`,
+    in this process or in the workers of a local executor), removed if the block fails or is
+    interrupted; :func:`put_in_place` moves it to -o. An OSError becomes a UsageError naming -o."""
     from tutgen.limits import shielded
 
     out = Path(os.path.realpath(plan.out))
@@ -269,29 +279,44 @@ def write_tree(plan: SheetPlan, files: Sequence[tuple[str, str | bytes]]) -> Non
         tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".tmp", dir=out.parent))
     except OSError as err:
         raise UsageError(f"cannot write {plan.out}: {err.strerror or err}") from None
-    current = ""
     try:
         os.chmod(tmp, 0o777 & ~umask)  # mkdtemp makes it private; the output is an ordinary directory
-        for name, content in files:
-            current = name
-            path = tmp / name
+        yield tmp
+    except BaseException as err:
+        with shielded():
+            shutil.rmtree(tmp, ignore_errors=True)
+        if isinstance(err, OSError):
+            raise UsageError(f"cannot write {plan.out}: {err.strerror or err}; nothing was written") from None
+        raise
+
+
+def write_files(root: Path, files: Sequence[tuple[str, str | bytes | None]], shown: Path) -> None:
+    """Write ``files`` (paths relative to ``root``) into ``root``, a staging directory; a None content is
+    a file already written there. An OSError is a UsageError that names the file as it will be, under
+    ``shown`` (-o)."""
+    for name, content in files:
+        if content is None:
+            continue
+        path = root / name
+        try:
             path.parent.mkdir(parents=True, exist_ok=True)
             if isinstance(content, bytes):
                 path.write_bytes(content)
             else:
                 with open(path, "w", encoding="utf-8", newline="\n") as fh:
                     fh.write(content)
-        current = ""
-        with shielded():  # the swap is one exchange (or, where there is none, two renames): nothing may stop it
-            check_existing(plan.out, plan.inputs, force=plan.force)  # as planned, still
-            _swap(tmp, out)
-    except BaseException as err:
-        with shielded():
-            shutil.rmtree(tmp, ignore_errors=True)
-        if isinstance(err, OSError):
-            where = plan.out / current if current else plan.out
-            raise UsageError(f"cannot write {where}: {err.strerror or err}; nothing was written") from None
-        raise
+        except OSError as err:
+            raise UsageError(f"cannot write {shown / name}: {err.strerror or err}; nothing was written") from None
+
+
+def put_in_place(plan: SheetPlan, tmp: Path) -> None:
+    """The staging directory ``tmp`` becomes -o, in one step (see :func:`_swap`), if -o still holds
+    nothing but a sheet's output."""
+    from tutgen.limits import shielded
+
+    with shielded():  # the swap is one exchange (or, where there is none, two renames): nothing may stop it
+        check_existing(plan.out, plan.inputs, force=plan.force)  # as planned, still
+        _swap(tmp, Path(os.path.realpath(plan.out)))
 
 
 #: Linux's renameat2: the directory file descriptor meaning "the current directory", and the flag that
@@ -358,7 +383,16 @@ def run_sheet(
 
     if scheduler:
         check_scheduler_address(scheduler)
-    with output_lock(plan.out):
+    with output_lock(plan.out), contextlib.ExitStack() as stack:
+        staged: list[Path] = []
+
+        def staging_dir() -> Path:
+            """The staging directory, made when the first file is about to be written (a run stopped before
+            leaves nothing behind); removed by ``stack`` if the run fails or is stopped."""
+            if not staged:
+                staged.append(stack.enter_context(staging(plan)))
+            return staged[0]
+
         with deadline(timeout):
             executor = make_executor(workers, scheduler)
             try:
@@ -375,6 +409,9 @@ def run_sheet(
                     derivations=derivations,
                     method=method,
                     on_done=on_done,
+                    # the workers of this machine write each sheet's files as they build it (in parallel, and
+                    # without sending them back); a Dask cluster's may be elsewhere: they send them back
+                    stage=(lambda: (staging_dir(), plan.out)) if getattr(executor, "local", False) else None,
                 )
             finally:
                 close = getattr(executor, "close", None)
@@ -383,7 +420,8 @@ def run_sheet(
         names = [plan.out / name for name, _ in build.files]
         assert names == list(plan.targets), "the build made other files than planned"
         stage("writing", str(plan.out))
-        write_tree(plan, build.files)
+        write_files(staging_dir(), build.files, plan.out)
+        put_in_place(plan, staging_dir())
     variants = f", {len(plan.variants)} variants" if plan.variants else ""
     notes = "".join(f"\nnote: {n}" for n in build.notes)  # what an LMS export left out, by name
     return (
