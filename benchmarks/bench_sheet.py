@@ -1,7 +1,7 @@
 """How fast `tutgen sheet` builds the ten-problem tutorial with its variants.
 
 Run from the repository root:
-    python benchmarks/bench_sheet.py [--variants 100] [--workers 1 2] [--baseline REV]
+    python benchmarks/bench_sheet.py [--variants 100] [--workers 1 2] [--baseline REV] [--repeat N]
 
 Each measurement is the command a user types, in a fresh process (`python -m tutgen sheet
 specs/tutorial-1/sheet.yaml -o OUT -n N -f md -f tex --workers W`): its wall time and its CPU time
@@ -11,7 +11,9 @@ and the rest: substituting each variant's numbers, views, keys, templates, in wo
 speed-up from the first worker count to the others, and whether the outputs are byte-identical. With
 ``--baseline REV`` the same commands run by the tutgen of git revision REV (extracted with ``git
 archive``), in the same run, so that before/after ratios are taken minutes apart on the same machine.
-Nothing is asserted; every ratio is printed. Targets (issue 17): 100 variants in at most 15 s with 2
+With ``--repeat N`` every command runs N times, the trees and worker counts taking turns (so that a
+slow minute of a shared machine falls on all of them), and the figures are the medians. Nothing is
+asserted; every ratio is printed. Targets (issue 17): 100 variants in at most 15 s with 2
 workers, a speed-up of at least 1.8x from 1 to 2 workers.
 """
 
@@ -81,6 +83,23 @@ def run(tree: Path, label: str, variants: int, workers: int, seed: int, tmp: Pat
     return result
 
 
+def summary(runs: list[dict[str, float | str]]) -> dict[str, float | str]:
+    """The medians of ``runs`` of one command (wall, CPU), their wall range, and the digest of the output
+    (every run must give the same; otherwise it is given as "differs")."""
+    import statistics
+
+    walls = [float(r["wall"]) for r in runs]
+    digests = {r["digest"] for r in runs}
+    return {
+        **runs[0],
+        "wall": statistics.median(walls),
+        "cpu": statistics.median(float(r["cpu"]) for r in runs),
+        "wall_min": min(walls),
+        "wall_max": max(walls),
+        "digest": digests.pop() if len(digests) == 1 else "differs",
+    }
+
+
 def extract(rev: str, into: Path) -> Path:
     """The tree of git revision ``rev`` of this repository, in ``into``."""
     blob = subprocess.run(["git", "archive", rev], cwd=ROOT, check=True, capture_output=True).stdout
@@ -95,6 +114,7 @@ def main() -> None:
     parser.add_argument("--workers", type=int, nargs="+", default=[1, 2])
     parser.add_argument("--seed", type=int, default=2026)
     parser.add_argument("--baseline", help="git revision to measure the same commands with (before/after)")
+    parser.add_argument("--repeat", type=int, default=1, help="runs of each command, taking turns; medians")
     args = parser.parse_args()
 
     print(f"load average before: {os.getloadavg()[0]:.1f} (other work on the machine slows every figure)")
@@ -105,15 +125,25 @@ def main() -> None:
         trees = {"now": ROOT}
         if args.baseline:
             trees["before"] = extract(args.baseline, tmp / "baseline")
-        results: dict[tuple[str, int], dict[str, float | str]] = {}
-        for label, tree in trees.items():
-            for w in args.workers:
-                r = run(tree, label, args.variants, w, args.seed, tmp)
-                results[label, w] = r
+        runs: dict[tuple[str, int], list[dict[str, float | str]]] = {}
+        for turn in range(args.repeat):
+            for label, tree in trees.items():
+                for w in args.workers:
+                    r = run(tree, label, args.variants, w, args.seed, tmp)
+                    runs.setdefault((label, w), []).append(r)
+                    print(
+                        f"  {label:6s} --workers {w}: {r['wall']:6.1f} s wall, {r['cpu']:6.1f} CPU-s  "
+                        f"(derivation {r['derive']:.1f} s, rendering {r['render']:.1f} worker-s; {r['files']} files)"
+                        + (f"  [run {turn + 1} of {args.repeat}]" if args.repeat > 1 else ""),
+                        flush=True,
+                    )
+        results = {key: summary(rs) for key, rs in runs.items()}
+        if args.repeat > 1:
+            print(f"medians of {args.repeat} runs (wall min-max in brackets):")
+            for (label, w), r in results.items():
                 print(
-                    f"  {label:6s} --workers {w}: {r['wall']:6.1f} s wall, {r['cpu']:6.1f} CPU-s  "
-                    f"(derivation {r['derive']:.1f} s, rendering {r['render']:.1f} worker-s; {r['files']} files)",
-                    flush=True,
+                    f"  {label:6s} --workers {w}: {r['wall']:6.1f} s wall [{r['wall_min']:.1f}-{r['wall_max']:.1f}], "
+                    f"{r['cpu']:6.1f} CPU-s"
                 )
         first = args.workers[0]
         for label in trees:

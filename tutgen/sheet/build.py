@@ -242,39 +242,99 @@ def build_unit(shared: Shared, unit: Unit) -> UnitResult:
 
 
 def unit_pieces(shared: Shared, units: Sequence[Unit], workers: int) -> list[tuple[Unit, ...]]:
-    """The units as the tasks of the workers: every unit of a problem in one piece, so that one worker
-    builds all of that problem's variants (its printer's texts, arranged terms and sympy's cache serve
-    every variant after the first: a sheet of 100 variants took 13 % less CPU than with the units dealt
-    out one by one), split only where a problem has more than its share of a pool twice the size of
-    ``workers`` (a cluster). The largest pieces first (units times the size of the problem's
-    equations), so that the last one to finish is a small one. The results do not depend on the pieces."""
-    import sympy as sp
-
-    from tutgen.render.size import count_ops_upto
-
+    """The units as the tasks of the workers, all decided before the first is built (for an executor that
+    takes its tasks at once: one worker, a Dask cluster; a local pool takes them as it goes,
+    :class:`UnitQueue`): every unit of a problem in one piece, so that one worker builds all of that
+    problem's variants (its printer's texts, arranged terms and sympy's cache serve every variant after
+    the first: a sheet of 100 variants took 13 % less CPU than with the units dealt out one by one), split
+    only where a problem has more than its share of a pool twice the size of ``workers`` (a cluster). The
+    largest pieces first (units times the size of the problem's equations, :func:`problem_sizes`), so that
+    the last one to finish is a small one. The results do not depend on the pieces."""
     by_problem: dict[int, list[Unit]] = {}
     for u in units:
         by_problem.setdefault(u.problem, []).append(u)
     share = max(1, -(-len(units) // (2 * max(workers, 1))))  # ceil
     pieces = [tuple(g[i : i + share]) for _, g in sorted(by_problem.items()) for i in range(0, len(g), share)]
-
-    sizes: dict[int, int] = {}
-
-    def size(problem: int) -> int:
-        """How much a unit of the problem prints: its steps' equations and its joint reactions (the keys'
-        largest entries), in operations (the tutorial's order of cost: p08, p05, p07, p03, ...)."""
-        if problem not in sizes:
-            d = shared.problems[problem].derivation
-            sides = [x for st in d.steps for eq in st.equations for x in (eq.lhs, eq.rhs) if isinstance(x, sp.Basic)]
-            ne = d.newton_euler
-            reactions = [x for r in ne.reactions for x in (*r.force, *r.moment)] if ne is not None else []
-            sizes[problem] = 1 + count_ops_upto(sides, 10**6) + count_ops_upto(reactions, 10**6)
-        return sizes[problem]
+    sizes = problem_sizes(shared)
 
     def weight(piece: tuple[Unit, ...]) -> int:
-        return len(piece) * size(piece[0].problem)
+        return len(piece) * sizes[piece[0].problem]
 
     return sorted(pieces, key=weight, reverse=True)  # stable: equal weights keep the sheet's order
+
+
+def problem_sizes(shared: Shared) -> list[int]:
+    """How much a unit of each problem prints: its steps' equations and its joint reactions (the keys'
+    largest entries), in operations (the tutorial's order of cost: p08, p05, p07, p03, ...). A guess: a
+    problem of numbers (the composite inertia of p01) costs more than its operations say."""
+    import sympy as sp
+
+    from tutgen.render.size import count_ops_upto
+
+    sizes = []
+    for problem in shared.problems:
+        d = problem.derivation
+        sides = [x for st in d.steps for eq in st.equations for x in (eq.lhs, eq.rhs) if isinstance(x, sp.Basic)]
+        ne = d.newton_euler
+        reactions = [x for r in ne.reactions for x in (*r.force, *r.moment)] if ne is not None else []
+        sizes.append(1 + count_ops_upto(sides, 10**6) + count_ops_upto(reactions, 10**6))
+    return sizes
+
+
+class UnitQueue:
+    """The units handed to the workers of a local pool as each becomes free (``ProcessExecutor.pull``),
+    so that neither a guess of their cost nor the order of the pieces can leave a worker idle at the end
+    while the other builds a problem it had guessed small (p01, the composite inertia, ran last and alone
+    for half a second of a 100-variant sheet).
+
+    A worker goes on with the problem it built last (its caches are warm for it), taking half of what is
+    left of it each time; with nothing left there, it starts the largest problem no one has started (by
+    :func:`problem_sizes`); with none left, it takes half of what is left of the problem with the most
+    work still to hand out (by the seconds its units have taken so far), which another worker is building.
+    The pieces get smaller as the work runs out, so the workers finish within a small piece of each other.
+    Which worker builds which unit never changes what is built."""
+
+    def __init__(self, shared: Shared, units: Sequence[Unit]) -> None:
+        self._sizes = problem_sizes(shared)
+        self._left: dict[int, list[Unit]] = {}
+        for u in units:
+            self._left.setdefault(u.problem, []).append(u)
+        self._fresh = sorted(self._left, key=lambda p: (-len(self._left[p]) * self._sizes[p], p))
+        self._seconds: dict[int, tuple[float, int]] = {}  # problem -> (seconds, units) built so far
+
+    def next(self, last: int | None) -> tuple[Unit, ...] | None:
+        """The next piece for a worker that last built a piece of problem ``last`` (None: none yet)."""
+        if last is not None and self._left.get(last):
+            return self._take(last)
+        while self._fresh:
+            problem = self._fresh.pop(0)
+            if self._left.get(problem):
+                return self._take(problem)
+        busy = [p for p, left in self._left.items() if left]
+        if not busy:
+            return None
+        return self._take(max(busy, key=lambda p: (self._cost(p) * len(self._left[p]), -p)))
+
+    def done(self, piece: tuple[Unit, ...], results: Sequence[UnitResult]) -> None:
+        """Remember how long the piece's units took (to choose what to share at the end)."""
+        seconds, count = self._seconds.get(piece[0].problem, (0.0, 0))
+        took = sum(r.derive_seconds + r.render_seconds for r in results)
+        self._seconds[piece[0].problem] = (seconds + took, count + len(results))
+
+    def _cost(self, problem: int) -> float:
+        """Seconds per unit of ``problem``: as measured, or its size at the rate measured over all."""
+        seconds, count = self._seconds.get(problem, (0.0, 0))
+        if count:
+            return seconds / count
+        total = sum(s for s, _ in self._seconds.values())
+        weight = sum(n * self._sizes[p] for p, (_, n) in self._seconds.items())
+        return self._sizes[problem] * (total / weight if weight else 1.0)
+
+    def _take(self, problem: int) -> tuple[Unit, ...]:
+        left = self._left[problem]
+        n = -(-len(left) // 2)  # half, rounded up
+        piece, self._left[problem] = tuple(left[:n]), left[n:]
+        return piece
 
 
 def build_units(shared: Shared, piece: tuple[Unit, ...]) -> list[UnitResult]:
@@ -485,11 +545,26 @@ def build_sheet(
     # the workers in small pieces; then every sheet from them (templates only), in the order of the jobs
     units = plan_units(shared, variants)
     _warm_imports()  # imported once here, before a pool forks its workers
-    pieces = unit_pieces(shared, units, run.workers)
-    done = _ticks(len(pieces), 1 + len(variants), on_done)
     built: dict[Unit, UnitResult] = {}
-    for piece, results_of_piece in zip(pieces, run.map(build_units, shared, pieces, done), strict=True):
-        built.update(zip(piece, results_of_piece, strict=True))
+    pull = getattr(run, "pull", None)
+    if pull is not None and run.workers > 1:  # a local pool: each worker's next piece as it becomes free
+        queue = UnitQueue(shared, units)
+        tick = _ticks(len(units), 1 + len(variants), on_done)
+
+        def next_piece(last: tuple[Unit, ...] | None, results: list[UnitResult] | None) -> tuple[Unit, ...] | None:
+            if last is not None and results is not None:
+                queue.done(last, results)
+                built.update(zip(last, results, strict=True))
+                for _ in last if tick else ():
+                    tick()  # type: ignore[misc]
+            return queue.next(last[0].problem if last else None)
+
+        pull(build_units, shared, next_piece)
+    else:
+        pieces = unit_pieces(shared, units, run.workers)
+        tick = _ticks(len(pieces), 1 + len(variants), on_done)
+        for piece, results_of_piece in zip(pieces, run.map(build_units, shared, pieces, tick), strict=True):
+            built.update(zip(piece, results_of_piece, strict=True))
     unit_results = [built[u] for u in units]
     shared = dataclasses.replace(
         shared, units={unit_key(shared, u.problem, u.variant): r for u, r in zip(units, unit_results, strict=True)}
@@ -523,7 +598,8 @@ def build_sheet(
 
 def _ticks(units: int, jobs: int, on_done: Callable[[], None] | None) -> Callable[[], None] | None:
     """``on_done`` as the progress of the sheets: of the ``jobs`` ticks, all but the last spread over the
-    ``units`` (most of the time), the last once every sheet is built."""
+    ``units`` (most of the time: the result is called once per unit, or per piece of units, built), the
+    last once every sheet is built."""
     if on_done is None:
         return None
     state = {"done": 0, "ticked": 0}

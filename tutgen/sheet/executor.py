@@ -5,7 +5,8 @@ each worker once), and returns the results **in the order of the jobs**, whateve
 in, so the output never depends on the number of workers:
 
 - :class:`SerialExecutor`: in this process (``--workers 1``);
-- :class:`ProcessExecutor`: a ``concurrent.futures.ProcessPoolExecutor`` (``--workers N``);
+- :class:`ProcessExecutor`: a ``concurrent.futures.ProcessPoolExecutor`` (``--workers N``), which can
+  also take its jobs one at a time as its workers become free (:meth:`ProcessExecutor.pull`);
 - :class:`DaskExecutor`: a Dask distributed scheduler (``--scheduler ADDRESS``; the optional extra
   ``tutgen[dask]``). Dask is imported only when this one is made.
 
@@ -193,6 +194,47 @@ class ProcessExecutor:
             raise
         pool.shutdown(wait=True)
         return results
+
+    def pull(self, fn: Callable[[S, J], R], shared: S, next_job: Callable[[J | None, R | None], J | None]) -> None:
+        """Run ``fn(shared, job)`` for every job ``next_job`` gives, one at a time per worker: first
+        ``next_job(None, None)`` once for each worker, then, each time a worker finishes a job,
+        ``next_job(job, result)`` for its next one (None: nothing more for it). Unlike :meth:`map`, the jobs
+        are not known in advance: each is chosen when a worker is free for it, knowing how the finished
+        ones went (the one finished is the free worker's own last job: one job is in flight per worker)."""
+        from concurrent.futures import FIRST_COMPLETED, wait
+
+        first: list[J] = []
+        while len(first) < self._workers:
+            job = next_job(None, None)
+            if job is None:
+                break
+            first.append(job)
+        if len(first) <= 1:  # at most one job at a time: in this process
+            job = first[0] if first else None
+            while job is not None:
+                job = next_job(job, fn(shared, job))
+            return
+        from tutgen.limits import shielded
+
+        pool = ProcessPoolExecutor(
+            max_workers=len(first), mp_context=_fork_context(), initializer=_init_worker, initargs=(fn, shared)
+        )
+        try:
+            with shielded():  # as in map: the first submit forks every worker
+                running = {pool.submit(_run_in_worker, first[0]): first[0]}
+            running.update((pool.submit(_run_in_worker, job), job) for job in first[1:])
+            while running:
+                finished, _ = wait(running, return_when=FIRST_COMPLETED)
+                for future in finished:
+                    job = running.pop(future)
+                    following = next_job(job, future.result())
+                    if following is not None:
+                        running[pool.submit(_run_in_worker, following)] = following
+        except BaseException:
+            with shielded():  # a second Ctrl-C or the alarm must not leave workers behind
+                _stop_workers(pool)
+            raise
+        pool.shutdown(wait=True)
 
 
 class DaskExecutor:
