@@ -411,7 +411,7 @@ def build_job(shared: Shared, job: Job) -> JobResult:
     files += [(f"{prefix}{name}", content) for a in assets for name, content in a.files]
     written: list[tuple[str, str | bytes | None]] = list(files)
     if shared.stage is not None:
-        from tutgen.sheet.run import write_files
+        from tutgen.sheet.files import write_files
 
         root, shown = shared.stage
         write_files(Path(root), files, Path(shown))

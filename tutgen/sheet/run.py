@@ -33,6 +33,7 @@ from pathlib import Path
 from typing import Any
 
 from tutgen.errors import SpecError, SpecErrors, UsageError
+from tutgen.sheet.files import write_files
 from tutgen.sheet.model import WINDOWS_DEVICES, Sheet
 from tutgen.sheet.variants import Variant
 
@@ -288,25 +289,6 @@ def staging(plan: SheetPlan) -> Iterator[Path]:
         if isinstance(err, OSError):
             raise UsageError(f"cannot write {plan.out}: {err.strerror or err}; nothing was written") from None
         raise
-
-
-def write_files(root: Path, files: Sequence[tuple[str, str | bytes | None]], shown: Path) -> None:
-    """Write ``files`` (paths relative to ``root``) into ``root``, a staging directory; a None content is
-    a file already written there. An OSError is a UsageError that names the file as it will be, under
-    ``shown`` (-o)."""
-    for name, content in files:
-        if content is None:
-            continue
-        path = root / name
-        try:
-            path.parent.mkdir(parents=True, exist_ok=True)
-            if isinstance(content, bytes):
-                path.write_bytes(content)
-            else:
-                with open(path, "w", encoding="utf-8", newline="\n") as fh:
-                    fh.write(content)
-        except OSError as err:
-            raise UsageError(f"cannot write {shown / name}: {err.strerror or err}; nothing was written") from None
 
 
 def put_in_place(plan: SheetPlan, tmp: Path) -> None:
