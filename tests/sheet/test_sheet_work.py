@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import collections
 import dataclasses
+import functools
 from pathlib import Path
 
 import pytest
@@ -143,7 +144,10 @@ def test_a_staged_build_writes_the_same_files_in_its_workers(tmp_path: Path) -> 
     for executor in (None, ProcessExecutor(2)):
         root = tmp_path / ("serial" if executor is None else "pool")
         root.mkdir()
-        staged = build_sheet(sheet, executor=executor, stage=lambda r=root: (r, Path("out")), **kwargs)  # type: ignore[arg-type]
+        ticks: list[None] = []
+        tick = functools.partial(ticks.append, None)
+        staged = build_sheet(sheet, executor=executor, stage=lambda r=root: (r, Path("out")), on_done=tick, **kwargs)  # type: ignore[arg-type]
+        assert len(ticks) == 1 + 3  # the progress: one tick per sheet, the last when every sheet is built
         assert [n for n, _ in staged.files] == [n for n, _ in memory.files]
         left = {n for n, content in staged.files if content is not None}
         assert left == {"variants/index.csv"}

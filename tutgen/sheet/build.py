@@ -1,4 +1,4 @@
-"""Building a sheet: derive each problem once, then every variant by substitution, gathered in memory.
+"""Building a sheet: derive each problem once, then every variant by substitution.
 
 :func:`build_sheet` returns every file's path (relative to the output directory) and content, in a fixed
 order; the CLI writes them into a staging directory and moves it to the output only when everything
@@ -555,8 +555,9 @@ def build_sheet(
             if last is not None and results is not None:
                 queue.done(last, results)
                 built.update(zip(last, results, strict=True))
-                for _ in last if tick else ():
-                    tick()  # type: ignore[misc]
+                if tick is not None:
+                    for _ in last:
+                        tick()
             return queue.next(last[0].problem if last else None)
 
         pull(build_units, shared, next_piece)
