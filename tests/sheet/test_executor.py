@@ -18,7 +18,14 @@ def _slow(shared: float, job: int) -> int:
     return job
 
 
-def test_a_stopped_pool_joins_its_manager_thread_and_leaves_the_exit_hook_nothing() -> None:
+def _pull_all(executor: ProcessExecutor, fn: object, shared: float, jobs: list[int]) -> None:
+    """``executor.pull`` over ``jobs``, in order (the jobs of ``map``)."""
+    todo = list(jobs)
+    executor.pull(fn, shared, lambda job, result: todo.pop(0) if todo else None)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("how", ["map", "pull"])
+def test_a_stopped_pool_joins_its_manager_thread_and_leaves_the_exit_hook_nothing(how: str) -> None:
     """CPython 3.11's exit hook writes to the wake-up pipe of every manager thread it knows; one that
     closes its pipe at that moment prints "Bad file descriptor" after "terminated" (gh-109917). A pool
     stopped by an exception must have joined its manager and dropped it from the hook's table."""
@@ -31,7 +38,10 @@ def test_a_stopped_pool_joins_its_manager_thread_and_leaves_the_exit_hook_nothin
     timer.start()
     try:
         with pytest.raises(KeyboardInterrupt):
-            ProcessExecutor(2).map(_slow, 30.0, list(range(4)))
+            if how == "map":
+                ProcessExecutor(2).map(_slow, 30.0, list(range(4)))
+            else:
+                _pull_all(ProcessExecutor(2), _slow, 30.0, list(range(4)))
     finally:
         timer.cancel()
         signal.signal(signal.SIGINT, previous)
