@@ -28,7 +28,7 @@ def _tables() -> list[dict[str, Any]]:
 def test_p01_parts_table_holds_each_parts_formula_and_hand_derived_moments() -> None:
     parts, _ = _tables()
     names = [row[0][0]["text"] for row in parts["rows"][::2]]
-    assert names == ["block (box)", "cylinder (cylinder)", "point (point)"]
+    assert names == ["block (box)", "cylinder", "point"]  # a name that says its shape: not "cylinder (cylinder)"
     head = ["".join(p.get("tex", p.get("text", "")) for p in cell) for cell in parts["header"]]
     assert head[0] == "Part" and all("kg\\,m^2" in h for h in head[3:])  # every moment column has its unit
     block, cyl = parts["rows"][1], parts["rows"][3]
@@ -38,7 +38,9 @@ def test_p01_parts_table_holds_each_parts_formula_and_hand_derived_moments() -> 
     assert _number(block[3]) == pytest.approx(m_block * (0.15**2 + 0.05**2) / 12, rel=1e-3)
     assert _number(cyl[3]) == pytest.approx(m_cyl * 0.025**2 / 2, rel=1e-3)
     assert _number(cyl[4]) == pytest.approx(m_cyl * (0.08**2 + 3 * 0.025**2) / 12, rel=1e-3)
-    assert "\\frac{m \\left(b^{2} + c^{2}\\right)}{12}" in parts["rows"][0][3][0]["tex"]  # the formula in symbols
+    # the formula in symbols, in the tutorial's order (m (3r^2 + h^2)/12, the radius first), stacked in its cell
+    assert parts["rows"][0][3][0]["tex"].endswith("\\frac{m \\left(b^{2} + c^{2}\\right)}{12}")
+    assert parts["rows"][2][4][0]["tex"].endswith("\\frac{m \\left(3 r^{2} + h^{2}\\right)}{12}")
 
 
 def test_p01_shift_table_holds_each_parts_m_d2_terms() -> None:

@@ -87,16 +87,68 @@ def _value(c: SolutionContext, expr: Any, unit: str) -> str:
 
 
 def _moment_line(c: SolutionContext, f: ShapeFormula, label: str, formula: sp.Expr) -> str:
-    """``J_{G,xx} = m(b^2 + c^2)/12 = 0.006132 kg m^2`` (a rod's axial moment: ``J_{G,xx} = 0``)."""
+    """``J_{G,xx} = 1/12 m (b^2 + c^2) = 1/12 . 2.943 . (0.15^2 + 0.05^2) = 0.006132 kg m^2`` (a rod's axial
+    moment: ``J_{G,xx} = 0``)."""
     value = _value(c, formula.subs(dict(f.symbols)), INERTIA)
     if formula == 0:
         return f"{_entry('G', label)} = {value}"
     numbers = {sym: as_number(c.num(v)) for sym, v in f.symbols}
-    forms = [sp.latex(formula)]
+    forms = [shape_tex(f, formula)]
     if all(not n.free_symbols for n in numbers.values()):  # the formula with the part's numbers put in
-        names = {sym: c.tex(n) for sym, n in numbers.items()}  # sympy brackets a name with a power
-        forms.append(sp.latex(formula, symbol_names=names, mul_symbol="dot"))
+        forms.append(shape_tex(f, formula, {sym: c.tex(n) for sym, n in numbers.items()}))
     return f"{_entry('G', label)} = " + " = ".join([*forms, value])
+
+
+def shape_tex(
+    f: ShapeFormula, formula: sp.Expr, numbers: dict[sp.Symbol, str] | None = None, *, stacked: bool = False
+) -> str:
+    r"""A shape's moment as a textbook writes it: the fraction first, then the mass, then the shape's sizes
+    in the order the shape names them (``\tfrac{1}{12} m (3 r^2 + h^2)``, not sympy's ``m (h^2 + 3 r^2)/12``
+    nor ``l^2 m/12``); with ``numbers`` (each symbol's printed value), the same with the numbers put in,
+    factors joined by ``\cdot`` (``\tfrac{1}{12} \cdot 15 \cdot 1.5^{2}``). A formula not of the form
+    (fraction) (mass) (product or sum of products of the sizes) is printed by sympy, as it is. ``stacked``
+    sets the fraction over the whole (``\frac{m (3 r^2 + h^2)}{12}``): narrower, for a table's cell."""
+    order = {sym: i for i, (sym, _) in enumerate(f.symbols)}
+    coeff, rest = formula.as_coeff_Mul()
+    factors = list(sp.Mul.make_args(rest))
+    masses = [x for x in factors if x in order and order[x] == 0]
+    factors = [x for x in factors if x not in masses]
+    if not coeff.is_Rational or coeff <= 0 or len(masses) != 1 or len(factors) > 1:
+        return sp.latex(formula) if numbers is None else sp.latex(formula, symbol_names=numbers, mul_symbol="dot")
+    dot = " \\cdot " if numbers is not None else " "
+
+    def name(sym: sp.Basic) -> str:
+        return numbers[sym] if numbers is not None else sp.latex(sym)
+
+    def product(term: sp.Expr) -> str | None:
+        """``3 r^{2}``: an integer, then the sizes in the shape's order, each to its power."""
+        k, monomial = term.as_coeff_Mul()
+        powers = [b.as_base_exp() for b in sp.Mul.make_args(monomial)]
+        if not (k.is_Integer and k > 0) or any(b not in order or not e.is_Integer or e < 1 for b, e in powers):
+            return None
+        shown = [str(k)] if k != 1 else []
+        for b, e in sorted(powers, key=lambda be: order[be[0]]):
+            printed = name(b) if numbers is None else _paren(name(b))
+            shown.append(printed if e == 1 else f"{printed}^{{{e}}}")
+        return dot.join(shown)
+
+    def first(term: sp.Expr) -> int:
+        return min((order.get(x, len(order)) for x in term.free_symbols), default=len(order))
+
+    body = factors[0] if factors else sp.S.One
+    if body.is_Add:
+        terms = [product(t) for t in sorted(sp.Add.make_args(body), key=first)]
+        printed = None if None in terms else f"\\left({' + '.join(t for t in terms if t)}\\right)"
+    else:
+        printed = product(body) if factors else ""
+    if printed is None:
+        return sp.latex(formula) if numbers is None else sp.latex(formula, symbol_names=numbers, mul_symbol="dot")
+    mass = name(masses[0]) if numbers is None else _paren(name(masses[0]))
+    if stacked and coeff.q != 1:
+        above = dot.join(x for x in (str(coeff.p) if coeff.p != 1 else "", mass, printed) if x)
+        return f"\\frac{{{above}}}{{{coeff.q}}}"
+    lead = "" if coeff == 1 else f"\\tfrac{{{coeff.p}}}{{{coeff.q}}}" if coeff.q != 1 else str(coeff.p)
+    return dot.join(x for x in (lead, mass, printed) if x)
 
 
 def _chain(c: SolutionContext, name: str, expr: sp.Expr, unit: str) -> str:
@@ -105,6 +157,13 @@ def _chain(c: SolutionContext, name: str, expr: sp.Expr, unit: str) -> str:
     formula, number = c.tex(expr), c.tex(as_number(c.num(expr)))
     forms = [formula] if formula != number else []
     return chain(name, *forms, _value(c, expr, unit))
+
+
+def _part_label(p: PartInertia) -> str:
+    """A part by its name and, unless its name says it already, its shape: ``block (box)``, ``cylinder``
+    (not ``cylinder (cylinder)``), ``hub (hollow cylinder)``."""
+    shape = p.shape.value.replace("_", " ")
+    return p.name if p.name.replace("_", " ").strip().casefold() == shape else f"{p.name} ({shape})"
 
 
 def _entry(point: str, label: str) -> str:
@@ -116,7 +175,7 @@ def _entry(point: str, label: str) -> str:
 
 def _part_blocks(c: SolutionContext, bi: BodyInertia, p: PartInertia) -> list[Block]:
     tex, num = c.tex, c.num
-    out: list[Block] = [subheading(f"{bi.name} / {p.name} ({p.shape.value.replace('_', ' ')})")]
+    out: list[Block] = [subheading(f"{bi.name} / {_part_label(p)}")]
     chains = [_chain(c, "m", p.mass, MASS)]
     if p.volume is not None:
         chains.insert(0, _chain(c, "V", p.volume, VOLUME))
@@ -326,8 +385,7 @@ def _part_tables(c: SolutionContext, bi: BodyInertia) -> list[Block] | None:
             dims = ",\\ ".join(
                 f"{sp.latex(sym)} = {tex(as_number(num(val)))}" for sym, val in f.symbols if str(sym) != "m"
             )
-        shape = p.shape.value.replace("_", " ")
-        first = [[text(f"{p.name} ({shape})")]]
+        first = [[text(_part_label(p))]]
         volume_formula = _volume_formula(p)
         first += (
             ([[math(f"\\displaystyle {volume_formula[1]}")]] if volume_formula is not None else [[]])
@@ -340,7 +398,8 @@ def _part_tables(c: SolutionContext, bi: BodyInertia) -> list[Block] | None:
             first += [[math(f"\\displaystyle {tex(density)}\\, V")]]  # m = rho V, V in the column before
         else:
             first += [[math(f"\\displaystyle {tex(p.mass)}")]]
-        first += [[math(f"\\displaystyle {sp.latex(found[e])}")] for e in _DIAGONAL]
+        printed = [shape_tex(f, found[e], stacked=True) if f is not None else sp.latex(found[e]) for e in _DIAGONAL]
+        first += [[math(f"\\displaystyle {x}")] for x in printed]
         second = [[math(f"{dims}\\ \\mathrm{{m}}")] if dims else []]
         second += [[number(p.volume)] if p.volume is not None else []] if has_volume else []
         second = [
