@@ -56,15 +56,17 @@ def _children_cpu() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def run(tree: Path, label: str, variants: int, workers: int, seed: int, tmp: Path) -> dict[str, float | str]:
+def run(
+    tree: Path, label: str, variants: int, workers: int, seed: int, tmp: Path, turn: int = 0
+) -> dict[str, float | str]:
     """One fresh `tutgen sheet` by the tutgen of ``tree``; its times, its report and its output's digest.
 
     The output is left where it is until the benchmark ends: ext4 does not give a new file an inode freed
     in the last 30 seconds (``recently_deleted``, checked inode by inode), so a run started within 30 s
     of deleting the previous run's 4 617 files spent 1-3 s of system time finding inodes for its own
-    (seen with ``perf``: 25 % of the samples of creating 4 600 files) - a cost of the benchmark's
+    (seen with ``perf``: 60-80 % of the samples of creating 4 600 files) - a cost of the benchmark's
     cleanup, not of the command."""
-    out = tmp / f"out-{label}-{workers}-{len(list(tmp.glob('out-*')))}"
+    out = tmp / f"out-{label}-{workers}-{turn}"
     cmd = [sys.executable, "-m", "tutgen", "sheet", str(tree / SHEET), "-o", str(out), "-n", str(variants)]
     cmd += ["-f", "md", "-f", "tex", "--workers", str(workers), "--seed", str(seed), "--no-progress", "--timeout", "0"]
     env = installed_env(tree)
@@ -133,7 +135,7 @@ def main() -> None:
         for turn in range(args.repeat):
             for label, tree in trees.items():
                 for w in args.workers:
-                    r = run(tree, label, args.variants, w, args.seed, tmp)
+                    r = run(tree, label, args.variants, w, args.seed, tmp, turn)
                     runs.setdefault((label, w), []).append(r)
                     print(
                         f"  {label:6s} --workers {w}: {r['wall']:6.1f} s wall, {r['cpu']:6.1f} CPU-s  "

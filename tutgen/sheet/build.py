@@ -355,7 +355,7 @@ def build_job(shared: Shared, job: Job) -> JobResult:
     views = [u.view for u in units]
     systems = [u.system for u in units]  # each problem's system as set (a variant's numbers), for its figure
     assets = [u.assets for u in units]
-    files: list[tuple[str, str | bytes]] = []
+    files: list[tuple[str, str | bytes | None]] = []
     values_out: list[tuple[str, str, str]] = []
     rederived: list[str] = []
     lms: list[Any] = []
@@ -409,15 +409,14 @@ def build_job(shared: Shared, job: Job) -> JobResult:
                     files.append((f"{prefix}{kind}.pdf", pdf))
     files += [(f"{prefix}{name}", svg) for name, svg in figures.values()]
     files += [(f"{prefix}{name}", content) for a in assets for name, content in a.files]
-    written: list[tuple[str, str | bytes | None]] = list(files)
-    if shared.stage is not None:
+    if shared.stage is not None:  # written here, by the worker; the parent gets the names
         from tutgen.sheet.files import write_files
 
         root, shown = shared.stage
         write_files(Path(root), files, Path(shown))
-        written = [(name, None) for name, _ in files]
+        files = [(name, None) for name, _ in files]
     total = time.perf_counter() - start
-    return JobResult(tuple(written), tuple(values_out), tuple(rederived), 0.0, total, tuple(lms))
+    return JobResult(tuple(files), tuple(values_out), tuple(rederived), 0.0, total, tuple(lms))
 
 
 def _lms(base: ProblemBase, view: Any, results: str, marks: str, system: Any, variant: str, label: str) -> Any:

@@ -21,12 +21,13 @@ ones never start; a running one ends on its own and its result is dropped) and c
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 import signal
 import threading
-from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 from typing import Any, Protocol, TypeVar
 
 from tutgen.errors import EXIT_TERMINATED, Terminated, UsageError
@@ -172,28 +173,12 @@ class ProcessExecutor:
         workers = min(self._workers, len(jobs))
         if workers <= 1:
             return SerialExecutor().map(fn, shared, jobs, on_done)
-        from tutgen.limits import shielded
-
-        pool = ProcessPoolExecutor(
-            max_workers=workers, mp_context=_fork_context(), initializer=_init_worker, initargs=(fn, shared)
-        )
-        try:
-            # the first submit forks every worker (the fork start method); a signal then must wait until
-            # the worker has its own handlers (_init_worker), or it runs the parent's in Python's at-fork
-            # hooks and prints "Exception ignored in ..." with a traceback
-            with shielded():
-                futures = [pool.submit(_run_in_worker, jobs[0])]
-            futures += [pool.submit(_run_in_worker, job) for job in jobs[1:]]
+        with _pool(workers, fn, shared, jobs[0]) as (pool, first):
+            futures = [first, *(pool.submit(_run_in_worker, job) for job in jobs[1:])]
             for _ in as_completed(futures):
                 if on_done:
                     on_done()
-            results = [f.result() for f in futures]
-        except BaseException:
-            with shielded():  # a second Ctrl-C or the alarm must not leave workers behind
-                _stop_workers(pool)
-            raise
-        pool.shutdown(wait=True)
-        return results
+            return [f.result() for f in futures]
 
     def pull(self, fn: Callable[[S, J], R], shared: S, next_job: Callable[[J | None, R | None], J | None]) -> None:
         """Run ``fn(shared, job)`` for every job ``next_job`` gives, one at a time per worker: first
@@ -214,15 +199,8 @@ class ProcessExecutor:
             while job is not None:
                 job = next_job(job, fn(shared, job))
             return
-        from tutgen.limits import shielded
-
-        pool = ProcessPoolExecutor(
-            max_workers=len(first), mp_context=_fork_context(), initializer=_init_worker, initargs=(fn, shared)
-        )
-        try:
-            with shielded():  # as in map: the first submit forks every worker
-                running = {pool.submit(_run_in_worker, first[0]): first[0]}
-            running.update((pool.submit(_run_in_worker, job), job) for job in first[1:])
+        with _pool(len(first), fn, shared, first[0]) as (pool, submitted):
+            running = {submitted: first[0], **{pool.submit(_run_in_worker, job): job for job in first[1:]}}
             while running:
                 finished, _ = wait(running, return_when=FIRST_COMPLETED)
                 for future in finished:
@@ -230,11 +208,32 @@ class ProcessExecutor:
                     following = next_job(job, future.result())
                     if following is not None:
                         running[pool.submit(_run_in_worker, following)] = following
-        except BaseException:
-            with shielded():  # a second Ctrl-C or the alarm must not leave workers behind
-                _stop_workers(pool)
-            raise
-        pool.shutdown(wait=True)
+
+
+@contextlib.contextmanager
+def _pool(
+    workers: int, fn: Callable[[Any, Any], Any], shared: Any, first: Any
+) -> Iterator[tuple[ProcessPoolExecutor, Future[Any]]]:
+    """A pool of ``workers`` processes running ``fn(shared, job)``, with ``first`` submitted (for
+    :meth:`ProcessExecutor.map` and :meth:`ProcessExecutor.pull`); shut down when the block ends, or, if it
+    fails or is stopped, its workers terminated first (:func:`_stop_workers`)."""
+    from tutgen.limits import shielded
+
+    pool = ProcessPoolExecutor(
+        max_workers=workers, mp_context=_fork_context(), initializer=_init_worker, initargs=(fn, shared)
+    )
+    try:
+        # the first submit forks every worker (the fork start method); a signal then must wait until
+        # the worker has its own handlers (_init_worker), or it runs the parent's in Python's at-fork
+        # hooks and prints "Exception ignored in ..." with a traceback
+        with shielded():
+            submitted = pool.submit(_run_in_worker, first)
+        yield pool, submitted
+    except BaseException:
+        with shielded():  # a second Ctrl-C or the alarm must not leave workers behind
+            _stop_workers(pool)
+        raise
+    pool.shutdown(wait=True)
 
 
 class DaskExecutor:

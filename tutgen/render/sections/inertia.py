@@ -108,13 +108,20 @@ def shape_tex(
     factors joined by ``\cdot`` (``\tfrac{1}{12} \cdot 15 \cdot 1.5^{2}``). A formula not of the form
     (fraction) (mass) (product or sum of products of the sizes) is printed by sympy, as it is. ``stacked``
     sets the fraction over the whole (``\frac{m (3 r^2 + h^2)}{12}``): narrower, for a table's cell."""
+
+    def as_sympy() -> str:
+        """The formula as sympy prints it (with the numbers put in, if given)."""
+        if numbers is None:
+            return sp.latex(formula)
+        return sp.latex(formula, symbol_names=numbers, mul_symbol="dot")
+
     order = {sym: i for i, (sym, _) in enumerate(f.symbols)}
     coeff, rest = formula.as_coeff_Mul()
     factors = list(sp.Mul.make_args(rest))
     masses = [x for x in factors if x in order and order[x] == 0]
     factors = [x for x in factors if x not in masses]
     if not coeff.is_Rational or coeff <= 0 or len(masses) != 1 or len(factors) > 1:
-        return sp.latex(formula) if numbers is None else sp.latex(formula, symbol_names=numbers, mul_symbol="dot")
+        return as_sympy()
     dot = " \\cdot " if numbers is not None else " "
 
     def name(sym: sp.Basic) -> str:
@@ -142,7 +149,7 @@ def shape_tex(
     else:
         printed = product(body) if factors else ""
     if printed is None:
-        return sp.latex(formula) if numbers is None else sp.latex(formula, symbol_names=numbers, mul_symbol="dot")
+        return as_sympy()
     mass = name(masses[0]) if numbers is None else _paren(name(masses[0]))
     if stacked and coeff.q != 1:
         above = dot.join(x for x in (str(coeff.p) if coeff.p != 1 else "", mass, printed) if x)
